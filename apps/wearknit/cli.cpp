@@ -1,0 +1,85 @@
+#include "apps/wearknit/cli.hpp"
+
+#include <algorithm>
+#include <iomanip>
+#include <ostream>
+
+namespace wearknit::cli {
+
+namespace po = boost::program_options;
+
+const std::vector<Verb>& verbs() {
+  static const std::vector<Verb> kVerbs = {
+      {"fmt", "fmt FILE.k [-o OUT.k] [--check]", "write a knitout file in canonical form", run_fmt},
+      {"demo", "demo [-o DIR]", "run the built-in example end to end and say what to open",
+       run_demo},
+  };
+  return kVerbs;
+}
+
+const Verb* find_verb(std::string_view name) {
+  for (const Verb& verb : verbs()) {
+    if (verb.name == name) return &verb;
+  }
+  return nullptr;
+}
+
+void print_usage(std::ostream& out) {
+  out << "usage: wearknit VERB [OPTIONS] [ARGS]\n"
+         "       wearknit --version | --help\n\n"
+         "verbs:\n";
+  std::size_t width = 0;
+  for (const Verb& verb : verbs()) width = std::max(width, verb.name.size());
+  for (const Verb& verb : verbs()) {
+    out << "  " << std::left << std::setw(static_cast<int>(width + 2)) << verb.name << verb.summary
+        << '\n';
+  }
+  out << "\n'wearknit VERB --help' shows a verb's options and defaults.\n"
+         "Exit codes: 0 success, 1 invalid input or failed job, 2 usage or I/O error.\n";
+}
+
+std::optional<int> parse_options(const std::vector<std::string>& args, const Verb& verb,
+                                 po::options_description& options,
+                                 const po::positional_options_description& positional,
+                                 po::variables_map& values, Context& context) {
+  options.add_options()("help,h", "show this help");
+  try {
+    po::store(po::command_line_parser(args).options(options).positional(positional).run(), values);
+    if (values.count("help") != 0) {
+      context.out << "usage: wearknit " << verb.synopsis << "\n\n"
+                  << verb.summary << "\n\n"
+                  << options;
+      return kExitOk;
+    }
+    po::notify(values);
+  } catch (const po::error& e) {
+    context.err << "wearknit " << verb.name << ": " << e.what() << "\n"
+                << "usage: wearknit " << verb.synopsis << "\n"
+                << "'wearknit " << verb.name << " --help' lists the options.\n";
+    return kExitUsage;
+  }
+  return std::nullopt;
+}
+
+std::optional<DiagnosticFormat> parse_diagnostic_format(std::string_view name) {
+  if (name == "text") return DiagnosticFormat::Text;
+  if (name == "json") return DiagnosticFormat::Json;
+  if (name == "junit") return DiagnosticFormat::Junit;
+  if (name == "github") return DiagnosticFormat::Github;
+  return std::nullopt;
+}
+
+void print_diagnostics(Context& context, const std::vector<knitout::Diagnostic>& diagnostics,
+                       DiagnosticFormat format) {
+  switch (format) {
+    case DiagnosticFormat::Json:
+      knitout::print_json(context.out, diagnostics);
+      return;
+    case DiagnosticFormat::Text:
+    default:
+      knitout::print_text(context.err, diagnostics);
+      return;
+  }
+}
+
+}  // namespace wearknit::cli

@@ -1,0 +1,60 @@
+// The `wearknit` command line: a table of verbs, each a function from its
+// arguments to an exit code. Verbs print; only main() exits.
+#pragma once
+
+#include <boost/program_options.hpp>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "knitout/diagnostic.hpp"
+
+namespace wearknit::cli {
+
+// Exit codes (docs/cli.md).
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitInvalid = 1;  // the input is invalid, or the job failed
+inline constexpr int kExitUsage = 2;    // usage or I/O error
+
+struct Context {
+  std::ostream& out;
+  std::ostream& err;
+  bool out_is_terminal = false;
+};
+
+using VerbFunction = int (*)(const std::vector<std::string>& args, Context& context);
+
+struct Verb {
+  std::string_view name;
+  std::string_view synopsis;  // "fmt FILE.k [-o OUT.k]"
+  std::string_view summary;   // one line
+  VerbFunction run;
+};
+
+const std::vector<Verb>& verbs();
+const Verb* find_verb(std::string_view name);
+void print_usage(std::ostream& out);
+
+// Parses `args` for a verb. Adds --help. On --help prints the verb's help
+// (options with their defaults) and returns kExitOk; on a bad option prints
+// the problem and the usage and returns kExitUsage; otherwise returns
+// nullopt and fills `values`.
+std::optional<int> parse_options(
+    const std::vector<std::string>& args, const Verb& verb,
+    boost::program_options::options_description& options,
+    const boost::program_options::positional_options_description& positional,
+    boost::program_options::variables_map& values, Context& context);
+
+// Diagnostic output formats shared by the verbs that read input.
+enum class DiagnosticFormat { Text, Json, Junit, Github };
+std::optional<DiagnosticFormat> parse_diagnostic_format(std::string_view name);
+// Prints diagnostics: text to `err`, json to `out` (as --json asks).
+void print_diagnostics(Context& context, const std::vector<knitout::Diagnostic>& diagnostics,
+                       DiagnosticFormat format);
+
+int run_fmt(const std::vector<std::string>& args, Context& context);
+int run_demo(const std::vector<std::string>& args, Context& context);
+
+}  // namespace wearknit::cli

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Configures and builds wearknit into a build folder.
+#   scripts/build.sh [release|strict|sanitize] [extra cmake -D options...]
+#   release:  optimised, no tests (build-release/)
+#   strict:   optimised with debug info, warnings as errors, tests and benchmarks (build/)
+#   sanitize: address + undefined-behaviour sanitizers, warnings as errors, tests (build-asan/)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+kind=${1:-release}
+shift || true
+jobs=${WEARKNIT_JOBS:-$(nproc)}
+case "$kind" in
+  release)  dir=build-release; opts=(-DCMAKE_BUILD_TYPE=Release -DWEARKNIT_TESTS=OFF -DWEARKNIT_BENCH=OFF) ;;
+  strict)   dir=build;         opts=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DWEARKNIT_WERROR=ON) ;;
+  sanitize) dir=build-asan;    opts=(-DCMAKE_BUILD_TYPE=Debug -DWEARKNIT_WERROR=ON -DWEARKNIT_SANITIZE=ON -DWEARKNIT_BENCH=OFF) ;;
+  *) echo "usage: scripts/build.sh [release|strict|sanitize]" >&2; exit 2 ;;
+esac
+generator=()
+if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+if [ ! -f "$dir/CMakeCache.txt" ]; then
+  cmake -S . -B "$dir" "${generator[@]}" "${opts[@]}" "$@"
+else
+  cmake -S . -B "$dir" "${opts[@]}" "$@" >/dev/null
+fi
+cmake --build "$dir" --parallel "$jobs"
+echo "$dir"

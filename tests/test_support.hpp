@@ -1,0 +1,49 @@
+// Helpers shared by the tests: where ../shared is, running the CLI.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace wearknit::test {
+
+// The shared data folder: $WEARKNIT_SHARED, else ../shared beside the
+// project root; nullopt when neither exists.
+inline std::optional<std::filesystem::path> shared_dir() {
+  if (const char* env = std::getenv("WEARKNIT_SHARED"); env != nullptr && *env != '\0') {
+    if (std::filesystem::is_directory(env)) return std::filesystem::path(env);
+    return std::nullopt;
+  }
+  const auto candidate = std::filesystem::path(WEARKNIT_SOURCE_DIR).parent_path() / "shared";
+  if (std::filesystem::is_directory(candidate)) return candidate;
+  return std::nullopt;
+}
+
+// Skips the running test, visibly, when ../shared is absent.
+#define WEARKNIT_REQUIRE_SHARED(var)                                                   \
+  const auto var##_opt = ::wearknit::test::shared_dir();                               \
+  if (!var##_opt) {                                                                    \
+    GTEST_SKIP() << "needs ../shared (set WEARKNIT_SHARED): test data is not present"; \
+  }                                                                                    \
+  const std::filesystem::path var = *var##_opt
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs the wearknit binary with `args` (a shell-quoted string), capturing
+// stdout and stderr.
+CommandResult run_wearknit(const std::string& args, const std::string& stdin_text = "");
+
+// A fresh empty folder under the system temp dir, removed by the caller.
+std::filesystem::path make_temp_dir(const std::string& prefix);
+
+std::string read_file(const std::filesystem::path& path);
+void write_file(const std::filesystem::path& path, const std::string& content);
+
+}  // namespace wearknit::test
