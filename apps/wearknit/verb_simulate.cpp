@@ -105,7 +105,7 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
   const std::string source = input == "-" ? "<stdin>" : input;
   if (input != "-") {
     if (std::filesystem::is_regular_file(input)) file.open(input, std::ios::binary);
-    if (!file) {
+    if (!file.is_open() || !file) {
       context.err << input << ": error: cannot open file\n";
       return kExitUsage;
     }

@@ -128,8 +128,9 @@ std::string BedView::write(const std::string& path, const Machine& machine,
   const int merge = std::max<int>(1, static_cast<int>((rows_.size() + kMaxRows - 1) / kMaxRows));
   const int pixel_rows = std::max<int>(1, static_cast<int>((rows_.size() + merge - 1) / merge));
 
-  const double cell_w = std::clamp(700.0 / needles, 1.0, 10.0);
-  const double cell_h = std::clamp(1000.0 / pixel_rows, 1.0, 8.0);
+  // Whole pixels per cell, so cells tile without seams.
+  const double cell_w = std::clamp(std::floor(700.0 / needles), 1.0, 10.0);
+  const double cell_h = std::clamp(std::floor(1000.0 / pixel_rows), 1.0, 8.0);
   const double panel_w = cell_w * needles;
   const double plot_h = cell_h * pixel_rows;
   const double left = 80;
@@ -177,6 +178,7 @@ std::string BedView::write(const std::string& path, const Machine& machine,
       cairo_rectangle(cr, panel_x[b], top, panel_w, plot_h);
       cairo_fill(cr);
     }
+    cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
     // Cells. Row r of the picture (counted from the bottom) merges samples
     // [r*merge, (r+1)*merge): a needle shows the last sample that held loops.
     for (int r = 0; r < pixel_rows; ++r) {
@@ -241,6 +243,7 @@ std::string BedView::write(const std::string& path, const Machine& machine,
         (void)racking;
       }
     }
+    cairo_set_antialias(cr, CAIRO_ANTIALIAS_DEFAULT);
     // Frames and axes.
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_line_width(cr, 1);
