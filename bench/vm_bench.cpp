@@ -35,7 +35,8 @@ const std::string& sheet(int width, int rows) {
 }
 
 void BM_ValidateSheet(benchmark::State& state) {
-  const std::string& text = sheet(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const std::string& text =
+      sheet(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   std::uint64_t instructions = 0;
   for (auto _ : state) {
     std::istringstream in(text);

@@ -126,8 +126,7 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
   for (const knitout::Header& header : reader.headers()) {
     if (header.key == "Carriers") header_carriers = reader.carriers().size();
   }
-  bed::Machine machine(*profile, sink, source, reader.carriers(), header_carriers,
-                       machine_options);
+  bed::Machine machine(*profile, sink, source, reader.carriers(), header_carriers, machine_options);
   machine.check_headers(reader.headers());
   knitout::Instruction instruction;
   while (reader.next(instruction)) machine.step(instruction);

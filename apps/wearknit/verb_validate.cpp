@@ -87,8 +87,8 @@ void print_github(std::ostream& out, const std::vector<FileResult>& results, boo
       out << (error ? "::error" : "::warning") << " file=" << github_escape(d.source, true);
       if (d.line > 0) out << ",line=" << d.line;
       if (d.column > 0) out << ",col=" << d.column;
-      out << ",title=" << github_escape(d.code, true) << "::"
-          << github_escape("[" + d.code + "] " + d.message, false) << "\n";
+      out << ",title=" << github_escape(d.code, true)
+          << "::" << github_escape("[" + d.code + "] " + d.message, false) << "\n";
     }
   }
 }
@@ -112,8 +112,8 @@ void print_junit(std::ostream& out, const std::vector<FileResult>& results, bool
     for (const knitout::Diagnostic& d : r.diagnostics) {
       suite_failures += d.severity == knitout::Severity::Error || werror ? 1 : 0;
     }
-    out << "  <testsuite name=\"" << xml_escape(r.path) << "\" tests=\""
-        << 1 + r.diagnostics.size() << "\" failures=\"" << suite_failures << "\">\n";
+    out << "  <testsuite name=\"" << xml_escape(r.path) << "\" tests=\"" << 1 + r.diagnostics.size()
+        << "\" failures=\"" << suite_failures << "\">\n";
     // One case for the file as a whole, then one per diagnostic carrying its
     // file and line, so CI reports show each where it belongs.
     out << "    <testcase classname=\"wearknit.validate\" name=\""
@@ -127,8 +127,8 @@ void print_junit(std::ostream& out, const std::vector<FileResult>& results, bool
     for (const knitout::Diagnostic& d : r.diagnostics) {
       const bool error = d.severity == knitout::Severity::Error || werror;
       out << "    <testcase classname=\"wearknit.validate." << xml_escape(d.code) << "\" name=\""
-          << xml_escape(knitout::format(d)) << "\" file=\"" << xml_escape(d.source)
-          << "\" line=\"" << d.line << "\">\n";
+          << xml_escape(knitout::format(d)) << "\" file=\"" << xml_escape(d.source) << "\" line=\""
+          << d.line << "\">\n";
       if (error) {
         out << "      <failure message=\"" << xml_escape("[" + d.code + "] " + d.message)
             << "\" type=\"" << knitout::to_string(d.severity) << "\">"
@@ -157,8 +157,8 @@ int run_validate(const std::vector<std::string>& args, Context& context) {
       ("machine profile: " + bed::profile_names()).c_str())(
       "werror", "treat warnings as errors (exit 1 when there are any)")(
       "format", po::value<std::string>(&format_name)->default_value("text"),
-      "diagnostics as text (stderr), json, junit or github (stdout)")(
-      "json", "same as --format json")(
+      "diagnostics as text (stderr), json, junit or github (stdout)")("json",
+                                                                      "same as --format json")(
       "max-repeats", po::value<std::size_t>(&max_repeats)->default_value(20),
       "show at most this many warnings of one code per file (0 = all)");
   po::positional_options_description positional;

@@ -20,10 +20,10 @@ struct Rgb {
 };
 
 // Ten well-separated colours (carriers 1-10 on the default machine).
-constexpr Rgb kPalette[] = {
-    {0.12, 0.47, 0.71}, {0.89, 0.10, 0.11}, {0.20, 0.63, 0.17}, {1.00, 0.50, 0.00},
-    {0.42, 0.24, 0.60}, {0.65, 0.34, 0.16}, {0.97, 0.51, 0.75}, {0.40, 0.40, 0.40},
-    {0.74, 0.74, 0.13}, {0.09, 0.75, 0.81}};
+constexpr Rgb kPalette[] = {{0.12, 0.47, 0.71}, {0.89, 0.10, 0.11}, {0.20, 0.63, 0.17},
+                            {1.00, 0.50, 0.00}, {0.42, 0.24, 0.60}, {0.65, 0.34, 0.16},
+                            {0.97, 0.51, 0.75}, {0.40, 0.40, 0.40}, {0.74, 0.74, 0.13},
+                            {0.09, 0.75, 0.81}};
 constexpr int kPaletteSize = sizeof kPalette / sizeof kPalette[0];
 
 Rgb colour_of(std::uint8_t code, std::uint8_t count) {
@@ -187,8 +187,8 @@ std::string BedView::write(const std::string& path, const Machine& machine,
         for (int n = 0; n < needles; ++n) {
           std::uint8_t code = 0;
           std::uint8_t count = 0;
-          for (int k = r * merge; k < std::min<int>((r + 1) * merge, static_cast<int>(rows_.size()));
-               ++k) {
+          for (int k = r * merge;
+               k < std::min<int>((r + 1) * merge, static_cast<int>(rows_.size())); ++k) {
             const Row& row = rows_[static_cast<std::size_t>(k)];
             const int i = lo + n - row.min_slot;
             if (i < 0 || i >= static_cast<int>(row.front.size())) continue;
@@ -293,9 +293,9 @@ std::string BedView::write(const std::string& path, const Machine& machine,
       cairo_fill(cr);
       cairo_set_source_rgb(cr, 0, 0, 0);
       const auto id = static_cast<knitout::CarrierId>(code - 1);
-      text(lx + 18, ly, "carrier " + (id < machine.carrier_names().size()
-                                          ? machine.carrier_names().name(id)
-                                          : std::to_string(code - 1)),
+      text(lx + 18, ly,
+           "carrier " + (id < machine.carrier_names().size() ? machine.carrier_names().name(id)
+                                                             : std::to_string(code - 1)),
            11);
       ly += 16;
     }
@@ -324,7 +324,8 @@ std::string BedView::write(const std::string& path, const Machine& machine,
     if (svg) {
       cairo_surface_finish(surface);
     } else {
-      const cairo_status_t status = cairo_surface_write_to_png_stream(surface, write_to_stream, &out);
+      const cairo_status_t status =
+          cairo_surface_write_to_png_stream(surface, write_to_stream, &out);
       if (status != CAIRO_STATUS_SUCCESS) failure = cairo_status_to_string(status);
     }
     if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {

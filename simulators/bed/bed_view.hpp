@@ -35,14 +35,14 @@ class BedView : public Observer {
 
  private:
   struct Row {
-    int min_slot = 0;                   // slot of cells[0]
-    std::vector<std::uint8_t> front;    // 0 = empty, else 1 + carrier colour index
+    int min_slot = 0;                 // slot of cells[0]
+    std::vector<std::uint8_t> front;  // 0 = empty, else 1 + carrier colour index
     std::vector<std::uint8_t> back;
     std::vector<std::uint8_t> front_count;  // loops held
     std::vector<std::uint8_t> back_count;
-    std::vector<int> transfers;         // slots transferred from/to during the sweep
+    std::vector<int> transfers;  // slots transferred from/to during the sweep
     double racking = 0;
-    bool racked = false;                // racking changed before this sweep
+    bool racked = false;  // racking changed before this sweep
     std::uint32_t line = 0;
   };
   std::vector<int> pending_transfers_;

@@ -180,11 +180,13 @@ Machine::NeedleSlot* Machine::slot(Needle needle, const Instruction& in) {
     // its whole possible range at once, so this happens once or twice.
     const std::int64_t margin =
         profile_.needle_count > 0
-            ? profile_.needle_count + 16 + static_cast<std::int64_t>(std::max(0.0, profile_.max_racking))
+            ? profile_.needle_count + 16 +
+                  static_cast<std::int64_t>(std::max(0.0, profile_.max_racking))
             : std::max<std::int64_t>(256, size);
-    std::int64_t low = size == 0 ? needle.index - margin : std::min<std::int64_t>(bed.base, needle.index - margin);
-    std::int64_t high =
-        size == 0 ? needle.index + margin : std::max<std::int64_t>(bed.base + size, needle.index + margin);
+    std::int64_t low =
+        size == 0 ? needle.index - margin : std::min<std::int64_t>(bed.base, needle.index - margin);
+    std::int64_t high = size == 0 ? needle.index + margin
+                                  : std::max<std::int64_t>(bed.base + size, needle.index + margin);
     if (high - low > kMaxDenseNeedles) {
       error(in, "V030",
             "needle " + knitout::to_string(needle) +
@@ -194,7 +196,8 @@ Machine::NeedleSlot* Machine::slot(Needle needle, const Instruction& in) {
     }
     std::vector<NeedleSlot> grown(static_cast<std::size_t>(high - low));
     for (std::int64_t i = 0; i < size; ++i) {
-      grown[static_cast<std::size_t>(bed.base - low + i)] = std::move(bed.slots[static_cast<std::size_t>(i)]);
+      grown[static_cast<std::size_t>(bed.base - low + i)] =
+          std::move(bed.slots[static_cast<std::size_t>(i)]);
     }
     bed.slots = std::move(grown);
     bed.base = low;
@@ -282,12 +285,11 @@ bool Machine::use_carriers(const Instruction& in) {
     if (st.status == CarrierStatus::Out) {
       const std::string& name = names_.name(id);
       if (!profile_.carrier_exists(name)) {
-        error(in, "V001",
-              "carrier " + quote(name) + " does not exist on machine " + profile_.name);
+        error(in, "V001", "carrier " + quote(name) + " does not exist on machine " + profile_.name);
       } else {
-        error(in, "V004",
-              "carrier " + quote(name) +
-                  " is not in; bring it in with in or inhook before using it");
+        error(
+            in, "V004",
+            "carrier " + quote(name) + " is not in; bring it in with in or inhook before using it");
       }
       // Carry on as if it had been brought in, so one mistake is reported once.
       st = CarrierState{};
@@ -345,7 +347,8 @@ void Machine::move_carriers(const Instruction& in) {
 void Machine::op_releasehook(const Instruction& in) {
   end_sweep(in.line);
   if (!hook_busy_) {
-    std::string message = "releasehook " + carrier_list_text(in.carriers) + ": the hook holds nothing";
+    std::string message =
+        "releasehook " + carrier_list_text(in.carriers) + ": the hook holds nothing";
     for (CarrierId id : in.carriers) {
       const CarrierState& st = carriers_[id];
       if (st.status == CarrierStatus::PendingInhook) {
@@ -467,8 +470,7 @@ void Machine::op_extension(const Instruction& in) {
              v > profile_.max_sub_roller_number) {
     error(in, "V042",
           "x-sub-roller-number " + format_number(v) + " is above " +
-              std::to_string(profile_.max_sub_roller_number) + ", the highest of " +
-              profile_.name);
+              std::to_string(profile_.max_sub_roller_number) + ", the highest of " + profile_.name);
   }
 }
 
@@ -569,7 +571,8 @@ void Machine::op_drop(const Instruction& in, bool amiss) {
       drop_run_loops_ += loose;
       drop_run_last_line_ = in.line;
     }
-    if (options_.observer != nullptr) options_.observer->loops_dropped(in.needle, s->loops, in.line);
+    if (options_.observer != nullptr)
+      options_.observer->loops_dropped(in.needle, s->loops, in.line);
     s->loops.clear();
   }
   sweep(SweepKind::Drop, in, s, slot_of(in.needle));
@@ -618,8 +621,8 @@ void Machine::op_transfer(const Instruction& in) {
     if (racking_ != std::floor(racking_)) {
       why = "; at a fractional racking no needles face each other";
     } else {
-      why = "; " + knitout::to_string(front) + " faces b" +
-            format_number(front.index - racking_) + " here";
+      why = "; " + knitout::to_string(front) + " faces b" + format_number(front.index - racking_) +
+            " here";
     }
     error(in, "V036",
           std::string(name) + " " + knitout::to_string(from) + " " + knitout::to_string(to) +

@@ -50,9 +50,9 @@ std::string_view loop_kind_name(LoopKind kind);
 // A loop held by a needle or slider.
 struct LiveLoop {
   LoopId id = kNoLoop;
-  std::uint16_t yarn = 0;        // Machine::yarn(id): the carriers that made it
-  bool has_parents = false;      // pulled through older loops (holds stitches below)
-  bool held = false;             // a newer loop was pulled through it (split)
+  std::uint16_t yarn = 0;    // Machine::yarn(id): the carriers that made it
+  bool has_parents = false;  // pulled through older loops (holds stitches below)
+  bool held = false;         // a newer loop was pulled through it (split)
 };
 
 // What an Observer is told when a loop is made.
@@ -96,10 +96,10 @@ enum class CarrierStatus : std::uint8_t {
 
 struct CarrierState {
   CarrierStatus status = CarrierStatus::Out;
-  bool used = false;       // knitted, tucked, split or missed since it came in
-  bool hook_held = false;  // brought in by inhook and not released yet
-  bool has_loop = false;   // made a loop since it came in (floats start there)
-  bool implicit = false;   // used without being brought in (reported once, V004)
+  bool used = false;            // knitted, tucked, split or missed since it came in
+  bool hook_held = false;       // brought in by inhook and not released yet
+  bool has_loop = false;        // made a loop since it came in (floats start there)
+  bool implicit = false;        // used without being brought in (reported once, V004)
   knitout::CarrierList in_set;  // the carriers brought in with it (first use must match)
   std::uint32_t in_line = 0;
   // Logical position (knitout spec): last needle and side of the needle.
@@ -116,8 +116,8 @@ class Machine {
   // `header_carriers` ids are the ones the `;;Carriers:` header names, or
   // nullopt when the file has no such header (then any name may be used).
   Machine(const MachineProfile& profile, knitout::DiagnosticSink& sink, std::string source,
-          const knitout::CarrierTable& carrier_names,
-          std::optional<std::size_t> header_carriers, MachineOptions options = {});
+          const knitout::CarrierTable& carrier_names, std::optional<std::size_t> header_carriers,
+          MachineOptions options = {});
 
   // Checks the header lines (Gauge, Position, Machine).
   void check_headers(const std::vector<knitout::Header>& headers);
@@ -200,7 +200,7 @@ class Machine {
   int max_slot_ = 0;
 
   std::array<CarrierState, 256> carriers_{};
-  std::vector<knitout::CarrierId> active_;  // carriers not Out, in order of entry
+  std::vector<knitout::CarrierId> active_;    // carriers not Out, in order of entry
   std::array<std::int16_t, 256> stat_index_;  // carrier id -> Stats::carriers index, -1 = none
   bool hook_busy_ = false;
   knitout::CarrierList hook_carriers_;

@@ -41,8 +41,8 @@ struct MachineProfile {
   std::vector<std::string> carriers;
   bool has_inserting_hook = true;
 
-  int max_loops_per_needle = 4;  // more is an error (V037)
-  int long_float_needles = 24;   // a float longer than this many needle pitches warns (V054)
+  int max_loops_per_needle = 4;       // more is an error (V037)
+  int long_float_needles = 24;        // a float longer than this many needle pitches warns (V054)
   bool integer_stitch_values = true;  // `stitch L T` takes integers (V041)
   int max_speed_number = 15;          // x-speed-number 0..max
   int max_sub_roller_number = 31;     // x-sub-roller-number 0..max

@@ -16,10 +16,10 @@ std::string fixed(double value, int decimals) {
 }
 
 constexpr knitout::Op kCountedOps[] = {
-    knitout::Op::In,   knitout::Op::Inhook, knitout::Op::Releasehook, knitout::Op::Out,
-    knitout::Op::Outhook, knitout::Op::Stitch, knitout::Op::Rack,     knitout::Op::Knit,
-    knitout::Op::Tuck, knitout::Op::Split,  knitout::Op::Drop,        knitout::Op::Amiss,
-    knitout::Op::Xfer, knitout::Op::Miss,   knitout::Op::Pause,       knitout::Op::Extension};
+    knitout::Op::In,      knitout::Op::Inhook, knitout::Op::Releasehook, knitout::Op::Out,
+    knitout::Op::Outhook, knitout::Op::Stitch, knitout::Op::Rack,        knitout::Op::Knit,
+    knitout::Op::Tuck,    knitout::Op::Split,  knitout::Op::Drop,        knitout::Op::Amiss,
+    knitout::Op::Xfer,    knitout::Op::Miss,   knitout::Op::Pause,       knitout::Op::Extension};
 
 std::string op_label(knitout::Op op) {
   if (op == knitout::Op::Extension) return "x-*";
@@ -104,8 +104,9 @@ void write_stats_json(std::ostream& out, const Stats& s, const std::string& sour
     first = false;
   }
   out << (first ? "]" : "\n  ]") << ",\n  \"sweeps\": " << s.sweeps
-      << ",\n  \"knit_sweeps\": " << s.knit_sweeps << ",\n  \"transfer_sweeps\": "
-      << s.transfer_sweeps << ",\n  \"drop_sweeps\": " << s.drop_sweeps
+      << ",\n  \"knit_sweeps\": " << s.knit_sweeps
+      << ",\n  \"transfer_sweeps\": " << s.transfer_sweeps
+      << ",\n  \"drop_sweeps\": " << s.drop_sweeps
       << ",\n  \"sweep_needles\": " << fixed(s.sweep_needles, 1) << ",\n  \"dat_passes\": "
       << (s.dat_passes ? std::to_string(*s.dat_passes) : std::string("null"))
       << ",\n  \"estimated_time_s\": " << fixed(s.estimated_time_s, 1)

@@ -19,10 +19,10 @@ namespace bed {
 
 struct CarrierStats {
   std::string name;
-  std::uint64_t loops = 0;         // loops this carrier made (knit, tuck, split)
-  double float_pitches = 0;        // sum of the distances between its consecutive loops
+  std::uint64_t loops = 0;   // loops this carrier made (knit, tuck, split)
+  double float_pitches = 0;  // sum of the distances between its consecutive loops
   double longest_float_pitches = 0;
-  double yarn_m = 0;               // estimated yarn length (docs/vm.md)
+  double yarn_m = 0;  // estimated yarn length (docs/vm.md)
 };
 
 struct Stats {
@@ -30,10 +30,10 @@ struct Stats {
   std::uint64_t instructions = 0;  // operations (comment-only lines not counted)
   std::array<std::uint64_t, knitout::kOpCount> by_op{};  // indexed by knitout::Op
   std::uint64_t loops_made = 0;
-  std::uint64_t transfers = 0;     // xfer instructions that moved at least one loop
+  std::uint64_t transfers = 0;  // xfer instructions that moved at least one loop
   std::uint64_t loops_transferred = 0;
-  std::uint64_t racks = 0;         // rack instructions that changed the racking
-  int largest_stack = 0;           // most loops on one needle at any time
+  std::uint64_t racks = 0;  // rack instructions that changed the racking
+  int largest_stack = 0;    // most loops on one needle at any time
   std::string largest_stack_needle;
   std::uint32_t largest_stack_line = 0;
   // Front-bed slots used (back needle b n at racking r counts as n + floor(r)).
@@ -46,7 +46,7 @@ struct Stats {
   std::uint64_t knit_sweeps = 0;
   std::uint64_t transfer_sweeps = 0;
   std::uint64_t drop_sweeps = 0;
-  double sweep_needles = 0;        // carriage travel in needle pitches, overrun included
+  double sweep_needles = 0;  // carriage travel in needle pitches, overrun included
   double estimated_time_s = 0;
   // Carriage passes as the DAT backend forms them; unset until a backend
   // that forms passes fills it in (the VM does not guess it).

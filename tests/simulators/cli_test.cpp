@@ -46,10 +46,10 @@ TEST_F(VmCliTest, ValidateAcceptsAValidSheet) {
 TEST_F(VmCliTest, ValidateReportsEachDiagnosticOnItsLine) {
   const auto r = run_wearknit("validate '" + bad_ + "'");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find(bad_ +
-                       ":3: error: [V004] carrier '3' is not in; bring it in with in or inhook "
-                       "before using it\n"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find(bad_ + ":3: error: [V004] carrier '3' is not in; bring it in with in or inhook "
+                        "before using it\n"),
+      std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find(bad_ + ":3: warning: [V050] knit on empty needle f1"), std::string::npos);
   EXPECT_NE(r.out.find("bad.k: INVALID on swg091n2"), std::string::npos);
@@ -77,8 +77,7 @@ TEST_F(VmCliTest, GithubFormatAnnotatesTheLine) {
                        "or inhook before using it\n"),
             std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("::warning file=" + bad_ + ",line=3,title=V050::[V050]"),
-            std::string::npos);
+  EXPECT_NE(r.out.find("::warning file=" + bad_ + ",line=3,title=V050::[V050]"), std::string::npos);
 }
 
 TEST_F(VmCliTest, JunitFormatHasOneCasePerDiagnostic) {
@@ -147,8 +146,8 @@ TEST_F(VmCliTest, SimulateWritesBedViewAndKnitGraph) {
   const std::string png = (dir_ / "view.png").string();
   const std::string svg = (dir_ / "view.svg").string();
   const std::string graph = (dir_ / "graph.json").string();
-  auto r = run_wearknit("simulate '" + good_ + "' --bed-view '" + png + "' --knit-graph '" +
-                        graph + "'");
+  auto r = run_wearknit("simulate '" + good_ + "' --bed-view '" + png + "' --knit-graph '" + graph +
+                        "'");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(read_file(png).substr(0, 4), "\x89PNG");
   EXPECT_NE(read_file(graph).find("\"loops\": ["), std::string::npos);

@@ -1,6 +1,8 @@
 // The virtual machine's rules, one should-fail case next to its should-pass
 // twin. Offending lines carry a `;!CODE` comment; a case passes when the
 // diagnostics are exactly the marked ones (code and line), nothing more.
+#include "simulators/bed/machine.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -10,7 +12,6 @@
 #include <vector>
 
 #include "knitout/parser.hpp"
-#include "simulators/bed/machine.hpp"
 #include "simulators/bed/profile.hpp"
 #include "simulators/bed/validate.hpp"
 
@@ -40,7 +41,7 @@ struct Outcome {
 };
 
 Outcome run(const std::string& text, const std::string& machine = "swg091n2",
-        MachineOptions options = {}) {
+            MachineOptions options = {}) {
   const MachineProfile* profile = find_profile(machine);
   EXPECT_NE(profile, nullptr) << machine;
   knitout::DiagnosticSink sink;
@@ -264,8 +265,8 @@ TEST(MachineTest, NamesMisalignedNeedlesAndWhatFacesThem) {
 
 TEST(MachineTest, ReportsARunOfUnravellingDropsOnce) {
   const Outcome r = run(std::string(kSwgHeader) +
-                    "in 3\ntuck + f1 3\ntuck + f2 3\nknit - f2 3\nknit - f1 3\nout 3\n"
-                    "drop f1\ndrop f2\n");
+                        "in 3\ntuck + f1 3\ntuck + f2 3\nknit - f2 3\nknit - f1 3\nout 3\n"
+                        "drop f1\ndrop f2\n");
   ASSERT_EQ(r.diagnostics.size(), 1u);
   EXPECT_EQ(knitout::format(r.diagnostics[0]),
             "t.k:11: warning: [V053] the drops of lines 11-12 let go of 2 loops that hold "
@@ -276,13 +277,13 @@ TEST(MachineTest, ReportsARunOfUnravellingDropsOnce) {
 TEST(MachineTest, SummarisesRepeatedWarningsAfterTheCap) {
   MachineOptions options;
   options.max_repeats = 2;
-  const Outcome r = run(std::string(kSwgHeader) + "drop f1\ndrop f2\ndrop f3\ndrop f4\n", "swg091n2",
-                    options);
+  const Outcome r =
+      run(std::string(kSwgHeader) + "drop f1\ndrop f2\ndrop f3\ndrop f4\n", "swg091n2", options);
   EXPECT_THAT(found(r.diagnostics), ElementsAre("0:V099", "5:V052", "6:V052"));
   EXPECT_EQ(r.diagnostics[0].message, "2 more V052 warnings not shown (the first 2 are)");
   options.max_repeats = 0;
-  const Outcome all = run(std::string(kSwgHeader) + "drop f1\ndrop f2\ndrop f3\ndrop f4\n",
-                      "swg091n2", options);
+  const Outcome all =
+      run(std::string(kSwgHeader) + "drop f1\ndrop f2\ndrop f3\ndrop f4\n", "swg091n2", options);
   EXPECT_EQ(all.diagnostics.size(), 4u);
 }
 
@@ -329,10 +330,10 @@ TEST(MachineTest, KnitPullsTheNewLoopThroughTheStack) {
 
 TEST(MachineTest, CountsStatistics) {
   const Outcome r = run(std::string(kSwgHeader) +
-                    "inhook 3\ntuck - f4 3\ntuck - f2 3\ntuck + f1 3\ntuck + f3 3\n"
-                    "releasehook 3\nknit - f4 3\nknit - f3 3\nknit - f2 3\nknit - f1 3\n"
-                    "rack 1\nrack 0\nxfer f1 b1\nxfer f2 b2\nxfer f3 b3\nknit + b1 3\n"
-                    "knit + b2 3\nknit + b3 3\nknit + f4 3\nouthook 3\n");
+                        "inhook 3\ntuck - f4 3\ntuck - f2 3\ntuck + f1 3\ntuck + f3 3\n"
+                        "releasehook 3\nknit - f4 3\nknit - f3 3\nknit - f2 3\nknit - f1 3\n"
+                        "rack 1\nrack 0\nxfer f1 b1\nxfer f2 b2\nxfer f3 b3\nknit + b1 3\n"
+                        "knit + b2 3\nknit + b3 3\nknit + f4 3\nouthook 3\n");
   EXPECT_EQ(r.stats.errors, 0u);
   const Stats& s = r.stats;
   EXPECT_EQ(s.instructions, 20u);

@@ -15,14 +15,14 @@ namespace {
 
 constexpr const char* kProgram =
     ";!knitout-2\n;;Carriers: 1 2 3\n"
-    "in 3\n"            // 3
-    "tuck + f1 3\n"     // 4: loop 0
-    "tuck + f2 3\n"     // 5: loop 1
-    "knit - f2 3\n"     // 6: loop 2 through 1
-    "knit - f1 3\n"     // 7: loop 3 through 0
-    "split + f1 b1 3\n" // 8: loop 4 through 3; 3 moves to b1
-    "out 3\n"           // 9
-    "drop b1\n";        // 10
+    "in 3\n"             // 3
+    "tuck + f1 3\n"      // 4: loop 0
+    "tuck + f2 3\n"      // 5: loop 1
+    "knit - f2 3\n"      // 6: loop 2 through 1
+    "knit - f1 3\n"      // 7: loop 3 through 0
+    "split + f1 b1 3\n"  // 8: loop 4 through 3; 3 moves to b1
+    "out 3\n"            // 9
+    "drop b1\n";         // 10
 
 TEST(KnitGraphTest, RecordsLoopsParentsAndYarnOrder) {
   knitout::DiagnosticSink sink;
