@@ -11,6 +11,15 @@
 
 #include "knitout/output_file.hpp"
 
+#if defined(__SANITIZE_ADDRESS__)
+// Sanitizer builds only: fontconfig, which cairo's text drawing loads, keeps
+// process-lifetime caches that LeakSanitizer reports at exit. They are the
+// library's, not ours; every wearknit allocation is still checked.
+extern "C" const char* __lsan_default_suppressions() {
+  return "leak:libfontconfig.so\n";
+}
+#endif
+
 namespace bed {
 
 namespace {
