@@ -34,25 +34,37 @@ void KnitGraph::write_json(std::ostream& out, const Machine& machine) const {
   for (std::size_t i = 0; i < names.size(); ++i) {
     out << (i ? ", " : "") << knitout::json_quote(names.name(static_cast<knitout::CarrierId>(i)));
   }
-  out << "],\n  \"yarns\": [";
-  std::vector<std::vector<LoopId>> order(machine.yarn_count());
-  for (const Loop& loop : loops_) order[loop.yarn].push_back(loop.id);
+  out << "],\n  \"carrier_sets\": [";
   for (std::size_t y = 0; y < machine.yarn_count(); ++y) {
-    out << (y ? ",\n" : "\n") << "    {\"carriers\": [";
+    out << (y ? ", " : "") << "[";
     const knitout::CarrierList& carriers = machine.yarn(static_cast<std::uint16_t>(y));
     for (std::size_t i = 0; i < carriers.size(); ++i) {
       out << (i ? ", " : "") << knitout::json_quote(names.name(carriers[i]));
     }
-    out << "], \"loops\": [";
-    for (std::size_t i = 0; i < order[y].size(); ++i) out << (i ? ", " : "") << order[y][i];
-    out << "]}";
+    out << "]";
   }
-  out << (machine.yarn_count() ? "\n  ]" : "]") << ",\n  \"loops\": [";
+  // Yarn order: each carrier's loops in the order it made them (a plated
+  // loop belongs to the yarn of every carrier that made it).
+  std::vector<std::vector<LoopId>> order(names.size());
+  for (const Loop& loop : loops_) {
+    for (knitout::CarrierId id : machine.yarn(loop.yarn)) order[id].push_back(loop.id);
+  }
+  out << "],\n  \"yarns\": [";
+  bool first = true;
+  for (std::size_t c = 0; c < order.size(); ++c) {
+    if (order[c].empty()) continue;
+    out << (first ? "\n" : ",\n") << "    {\"carrier\": "
+        << knitout::json_quote(names.name(static_cast<knitout::CarrierId>(c))) << ", \"loops\": [";
+    for (std::size_t i = 0; i < order[c].size(); ++i) out << (i ? ", " : "") << order[c][i];
+    out << "]}";
+    first = false;
+  }
+  out << (first ? "]" : "\n  ]") << ",\n  \"loops\": [";
   for (std::size_t i = 0; i < loops_.size(); ++i) {
     const Loop& loop = loops_[i];
     out << (i ? ",\n" : "\n") << "    {\"id\": " << loop.id << ", \"kind\": \""
         << loop_kind_name(loop.kind) << "\", \"needle\": \"" << knitout::to_string(loop.needle)
-        << "\", \"line\": " << loop.line << ", \"yarn\": " << loop.yarn << ", \"parents\": [";
+        << "\", \"line\": " << loop.line << ", \"carriers\": " << loop.yarn << ", \"parents\": [";
     for (std::uint32_t p = 0; p < loop.parents_count; ++p) {
       out << (p ? ", " : "") << parents_[loop.parents_begin + p];
     }

@@ -4,13 +4,15 @@
 // keeps one record per loop (so memory grows with the program, unlike the
 // machine itself). `write_json` writes:
 //   {"machine": "...", "carriers": ["3", ...],
-//    "yarns": [{"carriers": ["3"], "loops": [0, 1, ...]}, ...],   // yarn order
+//    "carrier_sets": [["3"], ["3", "4"], ...],
+//    "yarns": [{"carrier": "3", "loops": [0, 1, ...]}, ...],   // yarn order
 //    "loops": [{"id": 0, "kind": "tuck", "needle": "f10", "line": 9,
-//               "yarn": 0, "parents": [], "dropped_line": 0}, ...]}
-// `yarn` indexes "yarns" (a carrier set; plated loops have several
-// carriers); `parents` are the loops this loop was pulled through, bottom of
-// the stack first; "loops" of a yarn are its loops in the order the yarn
-// made them; dropped_line is 0 while a loop is still on the bed at the end.
+//               "carriers": 0, "parents": [], "dropped_line": 0}, ...]}
+// A loop's "carriers" indexes "carrier_sets" (plated loops have several
+// carriers); "parents" are the loops it was pulled through, bottom of the
+// stack first; a yarn's "loops" are the loops its carrier made, in the
+// order it made them (a plated loop is in every one of its carriers' yarns);
+// "dropped_line" is 0 while a loop is still on the bed at the end.
 #pragma once
 
 #include <cstdint>

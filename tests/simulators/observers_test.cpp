@@ -49,11 +49,12 @@ TEST(KnitGraphTest, RecordsLoopsParentsAndYarnOrder) {
   std::ostringstream json;
   graph.write_json(json, machine);
   const std::string text = json.str();
-  EXPECT_NE(text.find("\"yarns\": [\n    {\"carriers\": [\"3\"], \"loops\": [0, 1, 2, 3, 4]}"),
+  EXPECT_NE(text.find("\"carrier_sets\": [[\"3\"]],\n  \"yarns\": [\n    {\"carrier\": \"3\", "
+                      "\"loops\": [0, 1, 2, 3, 4]}\n  ]"),
             std::string::npos)
       << text;
   EXPECT_NE(text.find("{\"id\": 4, \"kind\": \"split\", \"needle\": \"f1\", \"line\": 8, "
-                      "\"yarn\": 0, \"parents\": [3], \"dropped_line\": 0}"),
+                      "\"carriers\": 0, \"parents\": [3], \"dropped_line\": 0}"),
             std::string::npos)
       << text;
 }
@@ -78,6 +79,30 @@ TEST(BedViewTest, WritesPngAndSvg) {
   // A folder that does not exist: an error, and no file.
   EXPECT_NE(view.write((dir / "missing/v.png").string(), machine, "t.k"), "");
   std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace bed
+
+namespace bed {
+namespace {
+
+TEST(KnitGraphTest, PlatedLoopsBelongToEveryCarriersYarn) {
+  knitout::DiagnosticSink sink;
+  const knitout::Program program = knitout::parse_string(
+      ";!knitout-2\n;;Carriers: 3 4\nin 3 4\ntuck + f1 3 4\nknit - f1 3 4\n", "t.k", sink);
+  KnitGraph graph;
+  MachineOptions options;
+  options.observer = &graph;
+  Machine machine(default_profile(), sink, "t.k", program.carriers, 2, options);
+  for (const auto& instruction : program.instructions) machine.step(instruction);
+  std::ostringstream json;
+  graph.write_json(json, machine);
+  EXPECT_NE(json.str().find("\"carrier_sets\": [[\"3\", \"4\"]],\n  \"yarns\": [\n"
+                            "    {\"carrier\": \"3\", \"loops\": [0, 1]},\n"
+                            "    {\"carrier\": \"4\", \"loops\": [0, 1]}\n  ]"),
+            std::string::npos)
+      << json.str();
 }
 
 }  // namespace
