@@ -382,6 +382,33 @@ TEST(MachineTest, ValidateOfProgramMatchesStreaming) {
   EXPECT_EQ(from_program.sweeps, streamed.stats.sweeps);
 }
 
+// Profiles are data: a profile built in the test changes the verdicts.
+std::vector<std::string> run_on(const MachineProfile& profile, const std::string& body) {
+  knitout::DiagnosticSink sink;
+  std::istringstream in(std::string(kSwgHeader) + body);
+  validate_stream(in, "t.k", profile, sink);
+  return found(sink.sorted());
+}
+
+TEST(ProfileTest, InhookNeedsAHookOnTheMachine) {
+  MachineProfile no_hook = default_profile();
+  no_hook.has_inserting_hook = false;
+  const std::string body = "inhook 3\ntuck + f1 3\nreleasehook 3\nouthook 3\n";
+  EXPECT_THAT(run_on(no_hook, body), ElementsAre("5:V015"));
+  EXPECT_THAT(run_on(default_profile(), body), ElementsAre());
+  EXPECT_THAT(run_on(no_hook, "in 3\ntuck + f1 3\nout 3\n"), ElementsAre());
+}
+
+TEST(ProfileTest, LimitsComeFromTheProfile) {
+  MachineProfile small = default_profile();
+  small.needle_count = 10;
+  small.max_loops_per_needle = 1;
+  small.long_float_needles = 3;
+  const std::string body = "in 3\ntuck + f0 3\ntuck + f4 3\ntuck + f4 3\ntuck + f10 3\nout 3\n";
+  EXPECT_THAT(run_on(small, body), ElementsAre("7:V054", "8:V037", "9:V030"));
+  EXPECT_THAT(run_on(default_profile(), body), ElementsAre());
+}
+
 TEST(ProfileTest, KnowsTheBuiltInMachines) {
   EXPECT_EQ(profile_names(), "swg091n2, kniterate, generic");
   EXPECT_EQ(default_profile().name, "swg091n2");
