@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "knitout/generate.hpp"
 #include "knitout/parser.hpp"
 #include "simulators/bed/profile.hpp"
 #include "simulators/bed/validate.hpp"
@@ -419,6 +420,87 @@ TEST(ProfileTest, KnowsTheBuiltInMachines) {
   EXPECT_TRUE(swg->carrier_exists("10"));
   EXPECT_FALSE(swg->carrier_exists("11"));
   EXPECT_TRUE(find_profile("generic")->carrier_exists("L1"));
+}
+
+}  // namespace
+}  // namespace bed
+
+namespace bed {
+namespace {
+
+// The project's own generated sheets (used by demo and the benchmarks) are
+// valid knitout for the default machine.
+TEST(MachineTest, GeneratedSheetsValidate) {
+  for (auto pattern : {knitout::SheetPattern::Plain, knitout::SheetPattern::Seed}) {
+    knitout::SheetParams params;
+    params.width_needles = 30;
+    params.rows = 12;
+    params.pattern = pattern;
+    const Outcome r = run(knitout::sheet_text(params));
+    EXPECT_EQ(r.stats.errors, 0u);
+    // The only finding: the last course is dropped off without a bind-off.
+    EXPECT_THAT(found(r.diagnostics), ElementsAre(::testing::EndsWith(":V053")));
+    EXPECT_EQ(r.stats.largest_stack, 1);
+  }
+}
+
+// Random instruction soup (fixed seed): the machine reports, never crashes,
+// and is deterministic.
+TEST(MachineTest, SurvivesRandomProgramsDeterministically) {
+  std::uint32_t state = 12345;
+  auto next = [&](std::uint32_t n) {
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) % n;
+  };
+  const char* ops[] = {"in",   "inhook", "releasehook", "out",   "outhook",
+                       "knit", "tuck",   "split",       "drop",  "amiss",
+                       "xfer", "miss",   "rack",        "pause", "stitch"};
+  const char* beds[] = {"f", "b", "fs", "bs"};
+  std::string text = ";!knitout-2\n;;Carriers: 1 2 3 4 5 6 7 8 9 10\n";
+  for (int i = 0; i < 3000; ++i) {
+    const std::string op = ops[next(15)];
+    auto needle = [&] {
+      return std::string(beds[next(4)]) + std::to_string(static_cast<int>(next(700)) - 50);
+    };
+    const std::string carrier = std::to_string(1 + next(10));
+    const std::string dir = next(2) ? "+" : "-";
+    if (op == "in" || op == "inhook" || op == "releasehook" || op == "out" || op == "outhook") {
+      text += op + " " + carrier + "\n";
+    } else if (op == "knit" || op == "tuck" || op == "miss") {
+      text += op + " " + dir + " " + needle() + " " + carrier + "\n";
+    } else if (op == "split") {
+      text += op + " " + dir + " " + needle() + " " + needle() + " " + carrier + "\n";
+    } else if (op == "xfer") {
+      text += op + " " + needle() + " " + needle() + "\n";
+    } else if (op == "drop" || op == "amiss") {
+      text += op + " " + needle() + "\n";
+    } else if (op == "rack") {
+      text +=
+          "rack " + std::to_string(static_cast<int>(next(40)) - 20) + (next(4) ? "" : ".25") + "\n";
+    } else if (op == "stitch") {
+      text += "stitch " + std::to_string(next(10)) + " " + std::to_string(next(20)) + "\n";
+    } else {
+      text += op + "\n";
+    }
+  }
+  for (const char* machine : {"swg091n2", "kniterate", "generic"}) {
+    MachineOptions options;
+    options.max_repeats = 0;
+    auto once = [&](Stats& stats) {
+      knitout::DiagnosticSink sink(1000000);  // no cap: run every line
+      std::istringstream in(text);
+      stats = validate_stream(in, "t.k", *find_profile(machine), sink, options);
+      return found(sink.sorted());
+    };
+    Stats first;
+    Stats second;
+    const auto a = once(first);
+    const auto b = once(second);
+    EXPECT_EQ(a, b) << machine;
+    EXPECT_GT(first.errors, 100u) << machine;
+    EXPECT_EQ(first.lines, 3002u) << machine;
+    EXPECT_EQ(first.instructions, 3000u) << machine;
+  }
 }
 
 }  // namespace
