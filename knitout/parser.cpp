@@ -78,6 +78,7 @@ struct Tokens {
   std::array<Token, kMaxTokens> items;
   std::size_t count = 0;
   bool overflow = false;
+  std::uint32_t overflow_column = 0;  // the first token past the limit
 };
 
 bool is_blank(char c) {
@@ -95,6 +96,7 @@ void tokenize(std::string_view code, Tokens& tokens) {
     while (i < code.size() && !is_blank(code[i])) ++i;
     if (tokens.count == kMaxTokens) {
       tokens.overflow = true;
+      tokens.overflow_column = static_cast<std::uint32_t>(start + 1);
       return;
     }
     tokens.items[tokens.count++] = {code.substr(start, i - start),
@@ -347,7 +349,7 @@ bool Reader::parse_line(Instruction& out) {
   const Token& opcode = tokens.items[0];
   const std::uint32_t end_column = static_cast<std::uint32_t>(code.size() + 1);
   if (tokens.overflow) {
-    return error(tokens.items[kMaxTokens - 1].column, "K014",
+    return error(tokens.overflow_column, "K014",
                  "too many arguments for " + quote(opcode.text) + " (more than " +
                      std::to_string(kMaxTokens - 1) + ")");
   }
