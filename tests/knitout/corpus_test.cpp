@@ -17,10 +17,8 @@ namespace {
 // syntactically valid knitout.
 const std::map<std::string, std::pair<std::uint32_t, std::string>>& syntax_rejects() {
   static const std::map<std::string, std::pair<std::uint32_t, std::string>> kRejects = {
-      {"neg-bad-needle.k", {37, "K011"}},
-      {"neg-bad-presser.k", {5, "K021"}},
-      {"neg-bad-speed.k", {5, "K021"}},
-      {"neg-drop-with-carrier.k", {37, "K014"}},
+      {"neg-bad-needle.k", {37, "K011"}}, {"neg-bad-presser.k", {5, "K021"}},
+      {"neg-bad-speed.k", {5, "K021"}},   {"neg-drop-with-carrier.k", {37, "K014"}},
       {"neg-unknown-op.k", {37, "K010"}},
   };
   return kRejects;
@@ -64,7 +62,7 @@ TEST(CorpusTest, FmtVerbIsIdempotentOnACorpusFile) {
   const auto tmp = wearknit::test::make_temp_dir("wearknit-fmt");
   const auto input = shared / "corpus" / "knitout" / "lv-crlf.k";
   const auto first = wearknit::test::run_wearknit("fmt '" + input.string() + "' -o '" +
-                                        (tmp / "a.k").string() + "'");
+                                                  (tmp / "a.k").string() + "'");
   EXPECT_EQ(first.exit_code, 0) << first.err;
   EXPECT_NE(first.err.find("[K003] CRLF line ending"), std::string::npos);
   const auto second = wearknit::test::run_wearknit("fmt '" + (tmp / "a.k").string() + "'");

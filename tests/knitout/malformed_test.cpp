@@ -29,8 +29,10 @@ std::vector<Case> cases() {
   const std::string long_token(10 * 1024 * 1024, 'q');
   return {
       {"UnknownOpcode", "knot + f1 3\n", "t.k:3:1: error: [K010] unknown operation 'knot'"},
-      {"GarbageBytes", "\xff\xfe\x01 f1\n",
-       "t.k:3:1: error: [K010] unknown operation '\xff\xfe\x01'"},
+      {"GarbageBytes", "\xff\xfe\x80 f1\n",
+       "t.k:3:1: error: [K010] unknown operation '\xff\xfe\x80'"},
+      {"ControlCharacter", "knit + f1 \x01\n",
+       "t.k:3:11: error: [K004] control character 0x01 in line; knitout is text"},
       {"UppercaseOpcode", "KNIT + f1 3\n", "t.k:3:1: error: [K010] unknown operation 'KNIT'"},
       {"BadNeedleLetter", "knit + x5 3\n",
        "t.k:3:8: error: [K011] invalid needle 'x5'; expected f, b, fs or bs followed by an "
@@ -56,13 +58,15 @@ std::vector<Case> cases() {
        "t.k:3:6: error: [K012] invalid direction 'f1'; expected '+' or '-'"},
       {"XferWithCarrier", "xfer f1 b1 3\n",
        "t.k:3:12: error: [K014] unexpected argument '3' for 'xfer'"},
-      {"DropWithCarrier", "drop f1 3\n", "t.k:3:9: error: [K014] unexpected argument '3' for 'drop'"},
+      {"DropWithCarrier", "drop f1 3\n",
+       "t.k:3:9: error: [K014] unexpected argument '3' for 'drop'"},
       {"XferMissingTarget", "xfer f1\n", "t.k:3:8: error: [K013] missing needle for 'xfer'"},
       {"SplitMissingTarget", "split + f1\n", "t.k:3:11: error: [K013] missing needle for 'split'"},
       {"RackNotANumber", "rack x\n", "t.k:3:6: error: [K015] racking 'x' is not a number"},
       {"RackHex", "rack 0x1\n", "t.k:3:6: error: [K015] racking '0x1' is not a number"},
       {"RackMissing", "rack\n", "t.k:3:5: error: [K013] missing racking for 'rack'"},
-      {"RackTwoArguments", "rack 1 2\n", "t.k:3:8: error: [K014] unexpected argument '2' for 'rack'"},
+      {"RackTwoArguments", "rack 1 2\n",
+       "t.k:3:8: error: [K014] unexpected argument '2' for 'rack'"},
       {"StitchOneArgument", "stitch 5\n",
        "t.k:3:9: error: [K013] missing stitch value for 'stitch'"},
       {"StitchNotANumber", "stitch a 5\n",
@@ -80,6 +84,8 @@ std::vector<Case> cases() {
       {"TooManyTokens", "knit + f1 1 2 3 4 5 6 7 8 9 10 a b c d e f g h i j k l m\n",
        "t.k:3:54: error: [K014] too many arguments for 'knit' (more than 23)"},
       {"NulByte", with_nul(), "t.k:3:10: error: [K004] NUL byte in line; knitout is text"},
+      {"CarriageReturnInsideLine", "in A\r\x16knit - B\r \n",
+       "t.k:3:5: error: [K004] control character 0x0D in line; knitout is text"},
       {"PresserModeWord", "x-presser-mode sometimes\n",
        "t.k:3:16: error: [K021] x-presser-mode takes on, off or auto, not 'sometimes'"},
       {"StitchNumberNegative", "x-stitch-number -1\n",
@@ -88,9 +94,11 @@ std::vector<Case> cases() {
        "t.k:3:15: error: [K013] missing number for 'x-speed-number'"},
       {"VisColorNotAColour", "x-vis-color red 1\n",
        "t.k:3:13: error: [K021] x-vis-color takes a colour #RRGGBB, not 'red'"},
-      {"TruncatedLastLine", "inhook 3\nknit + ", "t.k:4:8: error: [K013] missing needle for 'knit'"},
-      {"TruncatedNeedle", "xfer f1 b", "t.k:3:9: error: [K011] invalid needle 'b'; expected f, b, "
-                                       "fs or bs followed by an integer"},
+      {"TruncatedLastLine", "inhook 3\nknit + ",
+       "t.k:4:8: error: [K013] missing needle for 'knit'"},
+      {"TruncatedNeedle", "xfer f1 b",
+       "t.k:3:9: error: [K011] invalid needle 'b'; expected f, b, "
+       "fs or bs followed by an integer"},
       {"TenMegabyteLine", long_token + "\n",
        "t.k:3:1: error: [K010] unknown operation '" + std::string(40, 'q') + "...'"},
   };
@@ -164,8 +172,8 @@ TEST(MalformedTest, TenMegabyteCommentLineIsReadWhole) {
 
 TEST(MalformedTest, ErrorLineIsSkippedAndTheRestIsRead) {
   DiagnosticSink sink;
-  const Program p = parse_string(std::string(kHead) + "knit + f1 1\nxfer f1\nknit - f1 1\n", "t.k",
-                                 sink);
+  const Program p =
+      parse_string(std::string(kHead) + "knit + f1 1\nxfer f1\nknit - f1 1\n", "t.k", sink);
   EXPECT_EQ(sink.error_count(), 1u);
   ASSERT_EQ(p.instructions.size(), 2u);
   EXPECT_EQ(p.instructions[1].line, 5u);

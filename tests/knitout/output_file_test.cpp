@@ -1,12 +1,12 @@
 #include "knitout/output_file.hpp"
 
 #include <gtest/gtest.h>
-
-#include <stdexcept>
-#include <csignal>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
+#include <stdexcept>
 
 #include "tests/test_support.hpp"
 
@@ -63,8 +63,8 @@ TEST(OutputFileTest, WriteFailureMidFileIsReportedAndNothingIsLeft) {
     std::signal(SIGXFSZ, SIG_IGN);
     rlimit limit{4096, 4096};
     ::setrlimit(RLIMIT_FSIZE, &limit);
-    const std::string failure = write_file_atomically(
-        path, [](std::ostream& out) { out << std::string(1 << 20, 'x'); });
+    const std::string failure =
+        write_file_atomically(path, [](std::ostream& out) { out << std::string(1 << 20, 'x'); });
     std::_Exit(failure.rfind("cannot write " + path + ": ", 0) == 0 ? 0 : 1);
   }
   int status = 0;

@@ -77,25 +77,63 @@ std::string random_program(std::mt19937& rng) {
     std::string line;
     const char dir = pick(2) ? '+' : '-';
     switch (pick(19)) {
-      case 0: line = "in" + carrier_list(1); break;
-      case 1: line = "inhook" + carrier_list(1); break;
-      case 2: line = "releasehook" + carrier_list(1); break;
-      case 3: line = "out" + carrier_list(1); break;
-      case 4: line = "outhook" + carrier_list(1); break;
-      case 5: line = "stitch " + number() + " " + number(); break;
-      case 6: line = "rack " + number(); break;
-      case 7: line = std::string("knit ") + dir + " " + needle() + carrier_list(0); break;
-      case 8: line = std::string("tuck ") + dir + " " + needle() + carrier_list(0); break;
-      case 9: line = std::string("split ") + dir + " " + needle() + " " + needle() + carrier_list(0); break;
-      case 10: line = "drop " + needle(); break;
-      case 11: line = "amiss " + needle(); break;
-      case 12: line = "xfer " + needle() + " " + needle(); break;
-      case 13: line = std::string("miss ") + dir + " " + needle() + carrier_list(1); break;
-      case 14: line = "pause"; break;
-      case 15: line = "x-stitch-number " + std::to_string(pick(100)); break;
-      case 16: line = std::string("x-presser-mode ") + (pick(2) ? "auto" : "off"); break;
-      case 17: line = "x-vis-color #a0b1c2" + carrier_list(1); break;
-      case 18: line = "x-custom-thing " + number() + " q"; break;
+      case 0:
+        line = "in" + carrier_list(1);
+        break;
+      case 1:
+        line = "inhook" + carrier_list(1);
+        break;
+      case 2:
+        line = "releasehook" + carrier_list(1);
+        break;
+      case 3:
+        line = "out" + carrier_list(1);
+        break;
+      case 4:
+        line = "outhook" + carrier_list(1);
+        break;
+      case 5:
+        line = "stitch " + number() + " " + number();
+        break;
+      case 6:
+        line = "rack " + number();
+        break;
+      case 7:
+        line = std::string("knit ") + dir + " " + needle() + carrier_list(0);
+        break;
+      case 8:
+        line = std::string("tuck ") + dir + " " + needle() + carrier_list(0);
+        break;
+      case 9:
+        line = std::string("split ") + dir + " " + needle() + " " + needle() + carrier_list(0);
+        break;
+      case 10:
+        line = "drop " + needle();
+        break;
+      case 11:
+        line = "amiss " + needle();
+        break;
+      case 12:
+        line = "xfer " + needle() + " " + needle();
+        break;
+      case 13:
+        line = std::string("miss ") + dir + " " + needle() + carrier_list(1);
+        break;
+      case 14:
+        line = "pause";
+        break;
+      case 15:
+        line = "x-stitch-number " + std::to_string(pick(100));
+        break;
+      case 16:
+        line = std::string("x-presser-mode ") + (pick(2) ? "auto" : "off");
+        break;
+      case 17:
+        line = "x-vis-color #a0b1c2" + carrier_list(1);
+        break;
+      case 18:
+        line = "x-custom-thing " + number() + " q";
+        break;
     }
     if (pick(5) == 0) line += ";c" + std::to_string(pick(9));
     if (pick(20) == 0) line = ";" + line;
