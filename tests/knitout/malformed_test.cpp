@@ -3,6 +3,7 @@
 // these too).
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <string>
 
 #include "knitout/parser.hpp"
@@ -17,6 +18,9 @@ struct Case {
   std::string body;      // appended to kHead; its first line is line 3
   std::string expected;  // the first diagnostic, formatted
 };
+
+// Shown by GoogleTest (and ctest) in place of the case's bytes.
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 
 std::string with_nul() {
   std::string s = "knit + f1";
