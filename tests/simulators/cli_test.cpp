@@ -118,6 +118,19 @@ TEST_F(VmCliTest, MachineOptionPicksTheProfile) {
   EXPECT_NE(r.err.find(":5: error: [V030] needle f300 is outside the bed"), std::string::npos);
 }
 
+TEST_F(VmCliTest, ValidateReadsStdin) {
+  const auto r = run_wearknit("validate -", kBad);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("<stdin>:3: error: [V004]"), std::string::npos) << r.err;
+  EXPECT_EQ(run_wearknit("validate -", test::read_file(good_)).exit_code, 0);
+}
+
+TEST_F(VmCliTest, UnknownFormatIsAUsageError) {
+  const auto r = run_wearknit("validate --format xml '" + good_ + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "wearknit validate: --format takes text, json, junit or github, not 'xml'\n");
+}
+
 TEST_F(VmCliTest, MissingFileIsAnIoError) {
   const auto r = run_wearknit("validate '" + (dir_ / "none.k").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
