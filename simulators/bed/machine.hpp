@@ -115,6 +115,8 @@ class Machine {
   // Program's table; it may grow while the machine runs). The first
   // `header_carriers` ids are the ones the `;;Carriers:` header names, or
   // nullopt when the file has no such header (then any name may be used).
+  // The profile, sink and carrier table are referenced, not copied: they
+  // must outlive the machine.
   Machine(const MachineProfile& profile, knitout::DiagnosticSink& sink, std::string source,
           const knitout::CarrierTable& carrier_names, std::optional<std::size_t> header_carriers,
           MachineOptions options = {});
@@ -128,6 +130,7 @@ class Machine {
   void finish(std::uint32_t last_line);
 
   const MachineProfile& profile() const { return profile_; }
+  // Counts are live; bed span and yarn lengths are filled in by finish().
   const Stats& stats() const { return stats_; }
   double racking() const { return racking_; }
   const CarrierState& carrier(knitout::CarrierId id) const { return carriers_[id]; }
