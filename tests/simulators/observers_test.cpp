@@ -107,3 +107,39 @@ TEST(KnitGraphTest, PlatedLoopsBelongToEveryCarriersYarn) {
 
 }  // namespace
 }  // namespace bed
+
+namespace bed {
+namespace {
+
+std::uint32_t png_height(const std::string& png) {
+  // IHDR: width at bytes 16-19, height at 20-23, big-endian.
+  std::uint32_t h = 0;
+  for (int i = 20; i < 24; ++i) h = (h << 8) | static_cast<unsigned char>(png[i]);
+  return h;
+}
+
+TEST(BedViewTest, MergesSweepsOfLongProgramsIntoABoundedPicture) {
+  std::string text = ";!knitout-2\n;;Carriers: 3\nin 3\ntuck + f0 3\ntuck + f1 3\n";
+  for (int row = 0; row < 3000; ++row) {
+    text += row % 2 == 0 ? "knit - f1 3\nknit - f0 3\n" : "knit + f0 3\nknit + f1 3\n";
+  }
+  text += "out 3\n";
+  knitout::DiagnosticSink sink;
+  const knitout::Program program = knitout::parse_string(text, "t.k", sink);
+  BedView view;
+  MachineOptions options;
+  options.observer = &view;
+  Machine machine(default_profile(), sink, "t.k", program.carriers, 1, options);
+  for (const auto& instruction : program.instructions) machine.step(instruction);
+  machine.finish(0);
+  EXPECT_EQ(view.samples(), 3001u);
+  const auto dir = wearknit::test::make_temp_dir("bed-view");
+  ASSERT_EQ(view.write((dir / "v.png").string(), machine, "t.k"), "");
+  const std::string png = wearknit::test::read_file(dir / "v.png");
+  // 3001 sweeps, two per pixel row: 1501 rows of 1 px plus margins.
+  EXPECT_EQ(png_height(png), 56u + 1501u + 48u);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace bed
