@@ -87,8 +87,7 @@ void print_github(std::ostream& out, const std::vector<FileResult>& results, boo
       out << (error ? "::error" : "::warning") << " file=" << github_escape(d.source, true);
       if (d.line > 0) out << ",line=" << d.line;
       if (d.column > 0) out << ",col=" << d.column;
-      out << ",title=" << github_escape(d.code, true)
-          << "::" << github_escape("[" + d.code + "] " + d.message, false) << "\n";
+      out << "::" << github_escape("[" + d.code + "] " + d.message, false) << "\n";
     }
   }
 }

@@ -73,11 +73,11 @@ TEST_F(VmCliTest, GithubFormatAnnotatesTheLine) {
   const auto r = run_wearknit("validate --format github '" + bad_ + "'");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.out.find("::error file=" + bad_ +
-                       ",line=3,title=V004::[V004] carrier '3' is not in; bring it in with in "
+                       ",line=3::[V004] carrier '3' is not in; bring it in with in "
                        "or inhook before using it\n"),
             std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("::warning file=" + bad_ + ",line=3,title=V050::[V050]"), std::string::npos);
+  EXPECT_NE(r.out.find("::warning file=" + bad_ + ",line=3::[V050]"), std::string::npos);
 }
 
 TEST_F(VmCliTest, JunitFormatHasOneCasePerDiagnostic) {
