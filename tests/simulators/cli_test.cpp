@@ -80,6 +80,15 @@ TEST_F(VmCliTest, GithubFormatAnnotatesTheLine) {
   EXPECT_NE(r.out.find("::warning file=" + bad_ + ",line=3::[V050]"), std::string::npos);
 }
 
+TEST_F(VmCliTest, GithubFormatGivesTheColumnWhereKnown) {
+  const std::string syntax = (dir_ / "syntax.k").string();
+  write_file(syntax, ";!knitout-2\n;;Carriers: 3\nin 3\nknit x f1 3\ntuck + f1 3\nout 3\n");
+  const auto r = run_wearknit("validate --format github '" + syntax + "'");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out, "::error file=" + syntax +
+                       ",line=4,col=6::[K012] invalid direction 'x'; expected '+' or '-'\n");
+}
+
 TEST_F(VmCliTest, JunitFormatHasOneCasePerDiagnostic) {
   const auto r = run_wearknit("validate --format junit '" + bad_ + "' '" + good_ + "'");
   EXPECT_EQ(r.exit_code, 1);
