@@ -190,6 +190,9 @@ std::string BedView::write(const std::string& path, const Machine& machine,
     cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
     // Cells. Row r of the picture (counted from the bottom) merges samples
     // [r*merge, (r+1)*merge): a needle shows the last sample that held loops.
+    // Runs of equal cells are drawn as one rectangle (small SVG files).
+    std::vector<std::uint8_t> codes(static_cast<std::size_t>(needles));
+    std::vector<std::uint8_t> shades(static_cast<std::size_t>(needles));
     for (int r = 0; r < pixel_rows; ++r) {
       const double y = top + plot_h - (r + 1) * cell_h;
       for (int b = 0; b < 2; ++b) {
@@ -208,11 +211,24 @@ std::string BedView::write(const std::string& path, const Machine& machine,
               count = counts[static_cast<std::size_t>(i)];
             }
           }
-          if (code == 0) continue;
-          const Rgb c = colour_of(code, count);
-          cairo_set_source_rgb(cr, c.r, c.g, c.b);
-          cairo_rectangle(cr, panel_x[b] + n * cell_w, y, cell_w, cell_h);
-          cairo_fill(cr);
+          codes[static_cast<std::size_t>(n)] = code;
+          shades[static_cast<std::size_t>(n)] = std::min<std::uint8_t>(count, 3);
+        }
+        for (int n = 0; n < needles;) {
+          const std::uint8_t code = codes[static_cast<std::size_t>(n)];
+          const std::uint8_t shade = shades[static_cast<std::size_t>(n)];
+          int end = n + 1;
+          while (end < needles && codes[static_cast<std::size_t>(end)] == code &&
+                 shades[static_cast<std::size_t>(end)] == shade) {
+            ++end;
+          }
+          if (code != 0) {
+            const Rgb c = colour_of(code, shade);
+            cairo_set_source_rgb(cr, c.r, c.g, c.b);
+            cairo_rectangle(cr, panel_x[b] + n * cell_w, y, (end - n) * cell_w, cell_h);
+            cairo_fill(cr);
+          }
+          n = end;
         }
       }
     }
@@ -256,7 +272,7 @@ std::string BedView::write(const std::string& path, const Machine& machine,
     // Frames and axes.
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_line_width(cr, 1);
-    const int step = needles <= 60 ? 10 : needles <= 300 ? 50 : 100;
+    const int step = needles <= 120 ? 10 : needles <= 600 ? 50 : 100;
     for (int b = 0; b < 2; ++b) {
       cairo_rectangle(cr, panel_x[b] + 0.5, top + 0.5, panel_w, plot_h);
       cairo_stroke(cr);
