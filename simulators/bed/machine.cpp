@@ -130,9 +130,16 @@ void Machine::check_headers(const std::vector<knitout::Header>& headers) {
     } else if (header.key == "Machine") {
       const auto& names = profile_.machine_headers;
       if (!names.empty() && std::find(names.begin(), names.end(), header.value) == names.end()) {
+        std::string hint = "--machine picks another profile";
+        for (const MachineProfile& other : machine_profiles()) {
+          const auto& theirs = other.machine_headers;
+          if (std::find(theirs.begin(), theirs.end(), header.value) != theirs.end()) {
+            hint = "--machine " + other.name + " validates on it";
+          }
+        }
         warn(header.line, "V073",
              "file is for machine " + quote(header.value) + " but is validated on " +
-                 profile_.name + " (--machine picks another profile)");
+                 profile_.name + " (" + hint + ")");
       }
     }
   }

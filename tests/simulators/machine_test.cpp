@@ -256,6 +256,19 @@ TEST(MachineTest, ExplainsReleasehookBeforeFirstStitch) {
             "line 5) has not stitched yet: the hook takes its yarn at the first stitch");
 }
 
+TEST(MachineTest, SuggestsTheProfileTheMachineHeaderNames) {
+  const Outcome r = run(";!knitout-2\n;;Machine: Kniterate\n;;Carriers: 1 2 3\n");
+  ASSERT_EQ(r.diagnostics.size(), 1u);
+  EXPECT_EQ(knitout::format(r.diagnostics[0]),
+            "t.k:2: warning: [V073] file is for machine 'Kniterate' but is validated on swg091n2 "
+            "(--machine kniterate validates on it)");
+  const Outcome other = run(";!knitout-2\n;;Machine: SWG061N2\n;;Carriers: 1 2 3\n");
+  ASSERT_EQ(other.diagnostics.size(), 1u);
+  EXPECT_EQ(other.diagnostics[0].message,
+            "file is for machine 'SWG061N2' but is validated on swg091n2 (--machine picks "
+            "another profile)");
+}
+
 TEST(MachineTest, NamesMisalignedNeedlesAndWhatFacesThem) {
   const Outcome r = run(std::string(kSwgHeader) + "in 3\ntuck + f1 3\nrack 1\nxfer f1 b1\nout 3\n");
   ASSERT_EQ(r.diagnostics.size(), 1u);
