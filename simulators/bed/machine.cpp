@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace bed {
@@ -148,7 +149,12 @@ void Machine::check_headers(const std::vector<knitout::Header>& headers) {
 // ---------------------------------------------------------------- needles
 
 int Machine::slot_of(Needle needle) const {
-  return needle.is_front() ? needle.index : needle.index + floor_racking_;
+  if (needle.is_front()) return needle.index;
+  // Wide arithmetic: needle numbers and rackings near the int range must not
+  // overflow; such a slot is far outside any bed and reported as such.
+  const std::int64_t slot = std::int64_t{needle.index} + floor_racking_;
+  return static_cast<int>(std::clamp<std::int64_t>(slot, std::numeric_limits<int>::min(),
+                                                   std::numeric_limits<int>::max()));
 }
 
 double Machine::exact_slot_of(Needle needle) const {
@@ -445,7 +451,8 @@ void Machine::op_rack(const Instruction& in) {
   if (r != racking_) {
     end_sweep(in.line);
     racking_ = r;
-    floor_racking_ = static_cast<int>(std::floor(r));
+    // Clamped so that absurd rackings (already reported) stay representable.
+    floor_racking_ = static_cast<int>(std::clamp(std::floor(r), -1e9, 1e9));
     ++stats_.racks;
     stats_.estimated_time_s += profile_.rack_s;
     if (options_.observer != nullptr) options_.observer->racked(r, in.line);
