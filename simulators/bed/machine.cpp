@@ -22,7 +22,7 @@ namespace {
 // Dense needle arrays never grow past this many needles per bed, even on
 // the unlimited `generic` profile: a program that spreads further than this
 // is reported (V030) instead of allocating gigabytes.
-constexpr std::int64_t kMaxDenseNeedles = std::int64_t{1} << 22;
+constexpr std::int64_t kMaxDenseNeedles = std::int64_t{1} << 19;
 
 std::string format_number(double value) {
   char buffer[32];
@@ -743,7 +743,8 @@ void Machine::sweep(SweepKind kind, const Instruction& in, NeedleSlot* s, int sl
 
 void Machine::end_sweep(std::uint32_t /*line*/) {
   if (sweep_kind_ == SweepKind::None) return;
-  const double needles = (sweep_max_ - sweep_min_ + 1) + 2.0 * profile_.overrun_needles;
+  const double needles =
+      (static_cast<double>(sweep_max_) - sweep_min_ + 1) + 2.0 * profile_.overrun_needles;
   const double metres = needles * profile_.pitch_mm() / 1000.0;
   const double speed = sweep_kind_ == SweepKind::Knit ? profile_.knit_speed_m_per_s
                                                       : profile_.transfer_speed_m_per_s;
