@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <ostream>
 
 #include "knitout/output_file.hpp"
@@ -60,10 +61,19 @@ std::string number_text(double value) {
 
 void BedView::sweep_ended(const Machine& machine, std::uint32_t line) {
   if (machine.min_slot() > machine.max_slot()) return;
-  const int shift = std::abs(static_cast<int>(std::floor(machine.racking())));
+  // Back needles sit `shift` slots away from their front partners; the
+  // sampled range is capped so absurdly wide programs (possible on the
+  // unlimited generic profile) cannot exhaust memory.
+  const std::int64_t shift = static_cast<std::int64_t>(
+      std::min(std::fabs(std::floor(machine.racking())), static_cast<double>(kMaxNeedles)));
+  const std::int64_t low = std::max<std::int64_t>(std::int64_t{machine.min_slot()} - shift,
+                                                  std::numeric_limits<int>::min());
+  const std::int64_t high =
+      std::min<std::int64_t>({std::int64_t{machine.max_slot()} + shift, low + kMaxNeedles - 1,
+                              std::numeric_limits<int>::max()});
   Row row;
-  row.min_slot = machine.min_slot() - shift;
-  const int count = machine.max_slot() + shift - row.min_slot + 1;
+  row.min_slot = static_cast<int>(low);
+  const int count = static_cast<int>(high - low + 1);
   row.front.assign(static_cast<std::size_t>(count), 0);
   row.back.assign(static_cast<std::size_t>(count), 0);
   row.front_count.assign(static_cast<std::size_t>(count), 0);
@@ -116,6 +126,7 @@ std::string BedView::write(const std::string& path, const Machine& machine,
       hi = std::max(hi, row_hi);
     }
   }
+  if (std::int64_t{hi} - lo + 1 > kMaxNeedles) hi = lo + kMaxNeedles - 1;
   // Trim needles that never hold a loop at the edges.
   auto column_used = [&](int needle) {
     for (const Row& row : rows_) {

@@ -20,6 +20,8 @@ namespace bed {
 class BedView : public Observer {
  public:
   static constexpr int kMaxRows = 2400;
+  // At most this many needles per bed are drawn (from the leftmost used).
+  static constexpr int kMaxNeedles = 20000;
 
   void sweep_ended(const Machine& machine, std::uint32_t line) override;
   void loops_moved(knitout::Needle from, knitout::Needle to, int count,

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace bed {
@@ -21,7 +22,7 @@ namespace {
 // Dense needle arrays never grow past this many needles per bed, even on
 // the unlimited `generic` profile: a program that spreads further than this
 // is reported (V030) instead of allocating gigabytes.
-constexpr std::int64_t kMaxDenseNeedles = std::int64_t{1} << 22;
+constexpr std::int64_t kMaxDenseNeedles = std::int64_t{1} << 19;
 
 std::string format_number(double value) {
   char buffer[32];
@@ -148,7 +149,12 @@ void Machine::check_headers(const std::vector<knitout::Header>& headers) {
 // ---------------------------------------------------------------- needles
 
 int Machine::slot_of(Needle needle) const {
-  return needle.is_front() ? needle.index : needle.index + floor_racking_;
+  if (needle.is_front()) return needle.index;
+  // Wide arithmetic: needle numbers and rackings near the int range must not
+  // overflow; such a slot is far outside any bed and reported as such.
+  const std::int64_t slot = std::int64_t{needle.index} + floor_racking_;
+  return static_cast<int>(std::clamp<std::int64_t>(slot, std::numeric_limits<int>::min(),
+                                                   std::numeric_limits<int>::max()));
 }
 
 double Machine::exact_slot_of(Needle needle) const {
@@ -445,7 +451,8 @@ void Machine::op_rack(const Instruction& in) {
   if (r != racking_) {
     end_sweep(in.line);
     racking_ = r;
-    floor_racking_ = static_cast<int>(std::floor(r));
+    // Clamped so that absurd rackings (already reported) stay representable.
+    floor_racking_ = static_cast<int>(std::clamp(std::floor(r), -1e9, 1e9));
     ++stats_.racks;
     stats_.estimated_time_s += profile_.rack_s;
     if (options_.observer != nullptr) options_.observer->racked(r, in.line);
@@ -736,7 +743,8 @@ void Machine::sweep(SweepKind kind, const Instruction& in, NeedleSlot* s, int sl
 
 void Machine::end_sweep(std::uint32_t /*line*/) {
   if (sweep_kind_ == SweepKind::None) return;
-  const double needles = (sweep_max_ - sweep_min_ + 1) + 2.0 * profile_.overrun_needles;
+  const double needles =
+      (static_cast<double>(sweep_max_) - sweep_min_ + 1) + 2.0 * profile_.overrun_needles;
   const double metres = needles * profile_.pitch_mm() / 1000.0;
   const double speed = sweep_kind_ == SweepKind::Knit ? profile_.knit_speed_m_per_s
                                                       : profile_.transfer_speed_m_per_s;

@@ -54,7 +54,7 @@ struct Stats {
   std::uint64_t errors = 0;
   std::uint64_t warnings = 0;
 
-  int bed_span() const { return has_span ? max_slot - min_slot + 1 : 0; }
+  std::int64_t bed_span() const { return has_span ? std::int64_t{max_slot} - min_slot + 1 : 0; }
 };
 
 void write_stats_text(std::ostream& out, const Stats& stats, const std::string& source,

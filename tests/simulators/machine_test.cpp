@@ -457,6 +457,19 @@ TEST(MachineTest, GeneratedSheetsValidate) {
   }
 }
 
+TEST(MachineTest, ExtremeNeedlesAndRackingsAreReportedNotOverflowed) {
+  const std::string body =
+      "in 3\nrack 1000000000000\ntuck + b2147483647 3\ntuck + f-2147483648 3\n"
+      "tuck + b-2147483648 3\nrack 0\nout 3\n";
+  for (const char* machine : {"swg091n2", "generic"}) {
+    const Outcome r = run(std::string(kGenericHeader) + body, machine);
+    EXPECT_GT(r.stats.errors, 0u) << machine;
+  }
+  const Outcome generic = run(std::string(kGenericHeader) + body, "generic");
+  // generic has no bed width: the float is long, and b-2147483648 is too far from b2147483647.
+  EXPECT_THAT(found(generic.diagnostics), ElementsAre("6:V054", "7:V030"));
+}
+
 // Random instruction soup (fixed seed): the machine reports, never crashes,
 // and is deterministic.
 TEST(MachineTest, SurvivesRandomProgramsDeterministically) {

@@ -143,3 +143,29 @@ TEST(BedViewTest, MergesSweepsOfLongProgramsIntoABoundedPicture) {
 
 }  // namespace
 }  // namespace bed
+
+namespace bed {
+namespace {
+
+TEST(BedViewTest, DrawsAbsurdlyWideProgramsWithinBounds) {
+  // On the unlimited generic profile needles may be far apart; the picture
+  // keeps to kMaxNeedles needles instead of allocating billions.
+  knitout::DiagnosticSink sink;
+  const knitout::Program program = knitout::parse_string(
+      ";!knitout-2\n;;Carriers: 3\nin 3\ntuck + f-200000 3\ntuck + f200000 3\n"
+      "knit - f200000 3\nknit - f-200000 3\nout 3\n",
+      "t.k", sink);
+  BedView view;
+  MachineOptions options;
+  options.observer = &view;
+  Machine machine(*find_profile("generic"), sink, "t.k", program.carriers, 1, options);
+  for (const auto& instruction : program.instructions) machine.step(instruction);
+  machine.finish(0);
+  EXPECT_EQ(machine.stats().bed_span(), 400001);
+  const auto dir = wearknit::test::make_temp_dir("bed-view");
+  EXPECT_EQ(view.write((dir / "v.png").string(), machine, "t.k"), "");
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace bed
