@@ -11,6 +11,10 @@ namespace po = boost::program_options;
 const std::vector<Verb>& verbs() {
   static const std::vector<Verb> kVerbs = {
       {"fmt", "fmt FILE.k [-o OUT.k] [--check]", "write a knitout file in canonical form", run_fmt},
+      {"dat", "dat FILE.k -o OUT.dat [--machine M] [--verify]",
+       "knitout -> Shima Seiki DAT (swg091n2), byte for byte as knitout-to-dat.js", run_dat},
+      {"dat-info", "dat-info FILE.dat [--passes] [--png OUT.png]",
+       "read a DAT back: size, position, passes, picture", run_dat_info},
       {"demo", "demo [-o DIR]", "run the built-in example end to end and say what to open",
        run_demo},
   };
