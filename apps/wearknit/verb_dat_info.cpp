@@ -106,7 +106,11 @@ int run_dat_info(const std::vector<std::string>& args, Context& context) {
       for (const dat::DecodedPass& pass : layout->passes) {
         ++number;
         context.out << "pass " << number << " (row " << pass.row
-                    << "): " << knitout::direction_char(pass.direction) << " carriers "
+                    << "): "
+                    << (pass.direction == knitout::Direction::None
+                            ? std::string("none")
+                            : std::string(1, knitout::direction_char(pass.direction)))
+                    << " carriers "
                     << dat::carrier_code_text(pass.carriers()) << " racking "
                     << racking_text(pass.racking) << " stitch " << pass.stitch() << " speed "
                     << pass.speed();

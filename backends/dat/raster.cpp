@@ -20,6 +20,13 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
   return q;
 }
 
+std::string format_racking(double racking) {
+  std::string text = std::to_string(racking);
+  while (!text.empty() && text.back() == '0') text.pop_back();
+  if (!text.empty() && text.back() == '.') text.pop_back();
+  return text;
+}
+
 // Option values are bytes; the reference stores them into a byte array,
 // which keeps the low eight bits.
 std::uint8_t byte_of(std::int64_t value) {
@@ -188,8 +195,8 @@ bool draw(const PassList& list, knitout::DiagnosticSink& sink,
       if (front == 0) {
         sink.error(list.source, pass.line, 0, "D027",
                    pass.has_return_racking
-                       ? "split-via-sliders at racking " + std::to_string(pass.racking) +
-                             " returned at racking " + std::to_string(pass.return_racking) +
+                       ? "split-via-sliders at racking " + format_racking(pass.racking) +
+                             " returned at racking " + format_racking(pass.return_racking) +
                              ": the return must be 1, 2 or 4 needles away"
                        : std::string("split-via-sliders pass whose loops are never returned "
                                      "from the sliders (xfer them back in the next passes)"));
@@ -236,7 +243,7 @@ bool draw(const PassList& list, knitout::DiagnosticSink& sink,
 
     if (std::abs(pass.racking) > 8) {
       sink.error(list.source, pass.line, 0, "D021",
-                 "racking " + std::to_string(pass.racking) +
+                 "racking " + format_racking(pass.racking) +
                      " is beyond the machine's range -8..8");
       return false;
     }
