@@ -38,9 +38,9 @@ std::string describe_ops(const dat::DecodedPass& pass) {
   for (const Group& g : groups) {
     if (!text.empty()) text += ", ";
     text += dat::colour_name(g.colour) + " x" + std::to_string(g.count);
-    text += g.first == g.last ? " (slot " + std::to_string(g.first) + ")"
-                              : " (slots " + std::to_string(g.first) + "-" +
-                                    std::to_string(g.last) + ")";
+    text += g.first == g.last
+                ? " (slot " + std::to_string(g.first) + ")"
+                : " (slots " + std::to_string(g.first) + "-" + std::to_string(g.last) + ")";
   }
   return text.empty() ? "no ops" : text;
 }
@@ -105,13 +105,11 @@ int run_dat_info(const std::vector<std::string>& args, Context& context) {
       int number = 0;
       for (const dat::DecodedPass& pass : layout->passes) {
         ++number;
-        context.out << "pass " << number << " (row " << pass.row
-                    << "): "
+        context.out << "pass " << number << " (row " << pass.row << "): "
                     << (pass.direction == knitout::Direction::None
                             ? std::string("none")
                             : std::string(1, knitout::direction_char(pass.direction)))
-                    << " carriers "
-                    << dat::carrier_code_text(pass.carriers()) << " racking "
+                    << " carriers " << dat::carrier_code_text(pass.carriers()) << " racking "
                     << racking_text(pass.racking) << " stitch " << pass.stitch() << " speed "
                     << pass.speed();
         // Every other option line that is set, by name.

@@ -59,8 +59,7 @@ std::vector<std::uint8_t> encode(const Raster& raster) {
   std::copy(raster.palette.begin(), raster.palette.end(), bytes.begin() + kPaletteOffset);
   const auto width = static_cast<std::size_t>(raster.width);
   for (int y = 0; y < raster.height; ++y) {
-    encode_row(std::span(raster.pixels).subspan(static_cast<std::size_t>(y) * width, width),
-               bytes);
+    encode_row(std::span(raster.pixels).subspan(static_cast<std::size_t>(y) * width, width), bytes);
   }
   return bytes;
 }
@@ -115,9 +114,8 @@ Raster decode(std::span<const std::uint8_t> bytes, std::string_view source,
     const std::size_t length = data[2 * pair + 1];
     const std::size_t row_end = (at / width + 1) * width;
     if (at + length > row_end) {
-      return fail("D044", "corrupt DAT: the run at byte " +
-                              std::to_string(kDataOffset + 2 * pair) + " (" +
-                              std::to_string(length) + " pixels of colour " +
+      return fail("D044", "corrupt DAT: the run at byte " + std::to_string(kDataOffset + 2 * pair) +
+                              " (" + std::to_string(length) + " pixels of colour " +
                               std::to_string(colour) + ") crosses the end of row " +
                               std::to_string(at / width));
     }

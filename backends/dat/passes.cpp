@@ -90,10 +90,10 @@ struct StitchEntry {
   int number;
 };
 constexpr std::array<StitchEntry, 20> kStitchTable = {{
-    {10, -10, 81}, {10, 0, 82},  {10, 10, 83},  {15, 5, 84},   {15, 10, 85},
-    {15, 15, 86},  {20, 10, 87}, {20, 15, 88},  {20, 20, 89},  {25, 15, 90},
-    {25, 20, 91},  {25, 25, 92}, {30, 25, 93},  {35, 25, 94},  {40, 25, 95},
-    {45, 25, 96},  {50, 25, 97}, {55, 25, 98},  {60, 25, 99},  {65, 25, 100},
+    {10, -10, 81}, {10, 0, 82},  {10, 10, 83}, {15, 5, 84},  {15, 10, 85},
+    {15, 15, 86},  {20, 10, 87}, {20, 15, 88}, {20, 20, 89}, {25, 15, 90},
+    {25, 20, 91},  {25, 25, 92}, {30, 25, 93}, {35, 25, 94}, {40, 25, 95},
+    {45, 25, 96},  {50, 25, 97}, {55, 25, 98}, {60, 25, 99}, {65, 25, 100},
 }};
 
 // Digits, then an optional '.', then digits: the only numbers the reference
@@ -190,7 +190,8 @@ std::int64_t PassBuilder::slot_number(NeedleRef needle) const {
   return needle.index + static_cast<std::int64_t>(std::floor(racking_));
 }
 
-std::uint8_t PassBuilder::carrier_number(knitout::CarrierId id, const knitout::CarrierTable& table) {
+std::uint8_t PassBuilder::carrier_number(knitout::CarrierId id,
+                                         const knitout::CarrierTable& table) {
   while (id_numbers_.size() < table.size()) {
     const std::string& name = table.name(static_cast<knitout::CarrierId>(id_numbers_.size()));
     std::uint8_t number = 0;
@@ -430,8 +431,7 @@ bool PassBuilder::add(const Instruction& in, const knitout::CarrierTable& table,
         if (!carriers_[c].has_last) {
           return error(line, "D016",
                        "carrier " + name + " has not made a stitch since 'in' (line " +
-                           std::to_string(carriers_[c].in_line) +
-                           "), so it cannot go out");
+                           std::to_string(carriers_[c].in_line) + "), so it cannot go out");
         }
         if (!outhook && carriers_[c].used_hook) {
           return error(line, "D017",
@@ -496,9 +496,8 @@ bool PassBuilder::add(const Instruction& in, const knitout::CarrierTable& table,
         }
       }
       return error(line, "D023",
-                   "stitch " + format_number(leading) + " " + format_number(stitch) +
-                       ": leading " + format_number(leading) + " with stitch value " +
-                       format_number(stitch) +
+                   "stitch " + format_number(leading) + " " + format_number(stitch) + ": leading " +
+                       format_number(leading) + " with stitch value " + format_number(stitch) +
                        " is not in the swg091n2 stitch table (docs/dat.md); use "
                        "x-stitch-number");
     }
@@ -633,8 +632,8 @@ bool PassBuilder::add_split(const Instruction& in, const CarrierSet& cs, std::ui
       }
       if (!svs_->needles.insert(t_key).second) {
         return error(line, "D027",
-                     "split-via-sliders " + knitout::to_string(n) + " -> " +
-                         knitout::to_string(t) + ": that slider already holds a split loop");
+                     "split-via-sliders " + knitout::to_string(n) + " -> " + knitout::to_string(t) +
+                         ": that slider already holds a split loop");
       }
       type = PassType::SplitViaSliders;
       op = n.is_front() ? SlotOp::SplitToBack : SlotOp::SplitToFront;
@@ -649,8 +648,8 @@ bool PassBuilder::add_split(const Instruction& in, const CarrierSet& cs, std::ui
   const Direction direction = cs.empty() ? Direction::None : in.direction;
   const NeedleRef source{n.bed, n.index};
   kick_others(source, cs);
-  Candidate candidate = make_candidate(type, direction, cs, slot_number(source), *op,
-                                       cs.empty() ? 0 : stitch_);
+  Candidate candidate =
+      make_candidate(type, direction, cs, slot_number(source), *op, cs.empty() ? 0 : stitch_);
   if (!handle_in(cs, candidate, line)) return false;
   if (!check_pass_carriers(cs, line)) return false;
   merge(candidate);
@@ -684,8 +683,7 @@ bool PassBuilder::handle_in(const CarrierSet& cs, Candidate& candidate, std::uin
   if (!(in_info.carriers == cs)) {
     return error(line, "D012",
                  "first use of carriers " + name_list(cs) +
-                     " does not match the set brought in together: " +
-                     name_list(in_info.carriers));
+                     " does not match the set brought in together: " + name_list(in_info.carriers));
   }
   candidate.pass.gripper = Gripper::In;
   if (in_info.hook) {
@@ -726,8 +724,9 @@ void PassBuilder::kick_others(NeedleRef needle, const CarrierSet& cs) {
                       (last_slot == needle_slot && state.last_direction == Direction::Minus);
     const std::int64_t kick_slot = slot_number(state.kick_needle);
     const Direction want = left ? Direction::Minus : Direction::Plus;
-    const bool parked = left ? (state.kick_direction == Direction::Minus && kick_slot <= needle_slot)
-                             : (state.kick_direction == Direction::Plus && kick_slot >= needle_slot);
+    const bool parked = left
+                            ? (state.kick_direction == Direction::Minus && kick_slot <= needle_slot)
+                            : (state.kick_direction == Direction::Plus && kick_slot >= needle_slot);
     if (parked) continue;
     CarrierSet one;
     one.ids[one.size++] = c;
@@ -831,10 +830,10 @@ bool PassBuilder::append(Pass& last, const Candidate& next) {
   }
   // Hook in / release only at the start of a pass, hook out only at its end;
   // the same for the grippers.
-  const bool hook_ok = (last.hook == Hook::None && pass.hook == Hook::None) ||
-                       ((last.hook == Hook::In || last.hook == Hook::Release) &&
-                        pass.hook == Hook::None) ||
-                       (last.hook == Hook::None && pass.hook == Hook::Out);
+  const bool hook_ok =
+      (last.hook == Hook::None && pass.hook == Hook::None) ||
+      ((last.hook == Hook::In || last.hook == Hook::Release) && pass.hook == Hook::None) ||
+      (last.hook == Hook::None && pass.hook == Hook::Out);
   if (!hook_ok) return false;
   const bool gripper_ok = (last.gripper == Gripper::None && pass.gripper == Gripper::None) ||
                           (last.gripper == Gripper::In && pass.gripper == Gripper::None) ||
@@ -896,7 +895,8 @@ void PassBuilder::push(const Candidate& candidate) {
   list_.entries.push_back(candidate.entry);
   list_.passes.push_back(pass);
   open_slots_.clear();
-  if (pass.direction == Direction::None) open_slots_.emplace(candidate.entry.slot, pass.first_entry);
+  if (pass.direction == Direction::None)
+    open_slots_.emplace(candidate.entry.slot, pass.first_entry);
 }
 
 bool PassBuilder::finish(std::uint32_t last_line) {

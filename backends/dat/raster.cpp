@@ -1,12 +1,12 @@
 #include "backends/dat/raster.hpp"
 
-#include "backends/dat/reader.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
 #include <string>
+
+#include "backends/dat/reader.hpp"
 
 namespace dat {
 
@@ -154,8 +154,8 @@ bool draw(const PassList& list, knitout::DiagnosticSink& sink,
     max_slot = std::max(max_slot, pass.max_slot);
   }
   const std::int64_t width = kLeftSpace + (max_slot - min_slot + 1) + kRightSpace;
-  const std::int64_t height = kTopSpace + static_cast<std::int64_t>(list.passes.size()) +
-                              kBottomSpace + 2 * kFixedCourses;
+  const std::int64_t height =
+      kTopSpace + static_cast<std::int64_t>(list.passes.size()) + kBottomSpace + 2 * kFixedCourses;
   if (width > kMaxDimension + 1 || height > kMaxDimension + 1) {
     sink.error(list.source, 0, 0, "D030",
                "the design needs a " + std::to_string(width) + " x " + std::to_string(height) +
@@ -217,10 +217,9 @@ bool draw(const PassList& list, knitout::DiagnosticSink& sink,
     if (pass.gripper == Gripper::In) options.right[10] = carrier_code(pass);
     if (pass.gripper == Gripper::Out) options.right[10] = 100 + carrier_code(pass);
     if (pass.pause) options.left[7] = 20;
-    const bool presser =
-        pass.presser == Presser::On ||
-        (pass.presser == Presser::Auto && !hook_active && pass.hook == Hook::None &&
-         !(pass.has_front && pass.has_back));
+    const bool presser = pass.presser == Presser::On ||
+                         (pass.presser == Presser::Auto && !hook_active &&
+                          pass.hook == Hook::None && !(pass.has_front && pass.has_back));
     if (presser) options.right[11] = 101;
     if (pass.hook == Hook::In) {
       options.right[15] = 10;
@@ -242,9 +241,9 @@ bool draw(const PassList& list, knitout::DiagnosticSink& sink,
     if (pass.type == PassType::AMiss) options.left[12] = 20;
 
     if (std::abs(pass.racking) > 8) {
-      sink.error(list.source, pass.line, 0, "D021",
-                 "racking " + format_racking(pass.racking) +
-                     " is beyond the machine's range -8..8");
+      sink.error(
+          list.source, pass.line, 0, "D021",
+          "racking " + format_racking(pass.racking) + " is beyond the machine's range -8..8");
       return false;
     }
     if (pass.racking >= 1.0) {

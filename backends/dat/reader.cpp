@@ -90,7 +90,9 @@ std::string colour_name(std::uint8_t colour) {
     case 146:
     case 147:
       return "split-front-via-slider-" + std::string(colour % 2 == 0 ? "L" : "R") +
-             std::to_string(colour < 120 ? 1 : colour < 140 ? 2 : 4);
+             std::to_string(colour < 120   ? 1
+                            : colour < 140 ? 2
+                                           : 4);
     case 108:
     case 109:
     case 128:
@@ -98,7 +100,9 @@ std::string colour_name(std::uint8_t colour) {
     case 148:
     case 149:
       return "split-back-via-slider-" + std::string(colour % 2 == 0 ? "L" : "R") +
-             std::to_string(colour < 120 ? 1 : colour < 140 ? 2 : 4);
+             std::to_string(colour < 120   ? 1
+                            : colour < 140 ? 2
+                                           : 4);
     default:
       return "colour " + std::to_string(colour);
   }
@@ -118,9 +122,9 @@ std::optional<DatLayout> read_layout(const Raster& raster, std::string_view sour
   layout.width = raster.width;
   layout.height = raster.height;
   layout.slots = raster.width - kLeftSpace - kRightSpace;
-  layout.position = raster.at(kPositionColumn, raster.height - kTopSpace + 1) +
-                    100 * static_cast<std::int64_t>(
-                              raster.at(kPositionColumn, raster.height - kTopSpace + 2));
+  layout.position =
+      raster.at(kPositionColumn, raster.height - kTopSpace + 1) +
+      100 * static_cast<std::int64_t>(raster.at(kPositionColumn, raster.height - kTopSpace + 2));
   const int right_base = kLeftSpace + layout.slots + 4;
   const int last_pass_row = raster.height - kLayoutRows + kFirstPassRow - 1;
   for (int y = kFirstPassRow; y <= last_pass_row; ++y) {
@@ -165,8 +169,7 @@ std::vector<std::string> compare_passes(const PassList& list, const DatLayout& l
     const Pass& pass = list.passes[i];
     const DecodedPass& got = layout.passes[i];
     const std::string where = "pass " + std::to_string(i + 1) + " (line " +
-                              std::to_string(pass.line) + ", row " + std::to_string(got.row) +
-                              ")";
+                              std::to_string(pass.line) + ", row " + std::to_string(got.row) + ")";
     const bool directed = pass.direction != Direction::None;
     const bool xfer = pass.type == PassType::Xfer || pass.type == PassType::XferToSliders ||
                       pass.type == PassType::XferFromSliders || pass.type == PassType::Split ||
@@ -177,16 +180,16 @@ std::vector<std::string> compare_passes(const PassList& list, const DatLayout& l
                          ", expected " + knitout::direction_char(pass.direction));
     }
     if (got.carriers() != (carrier_code(pass) & 0xFF)) {
-      problems.push_back(where + ": carriers " + carrier_code_text(got.carriers()) +
-                         ", expected " + to_string(pass.carriers));
+      problems.push_back(where + ": carriers " + carrier_code_text(got.carriers()) + ", expected " +
+                         to_string(pass.carriers));
     }
     if (got.racking != pass.racking) {
       problems.push_back(where + ": racking " + format_racking(got.racking) + ", expected " +
                          format_racking(pass.racking));
     }
     if (got.stitch() != (pass.stitch & 0xFF)) {
-      problems.push_back(where + ": stitch number " + std::to_string(got.stitch()) +
-                         ", expected " + std::to_string(pass.stitch));
+      problems.push_back(where + ": stitch number " + std::to_string(got.stitch()) + ", expected " +
+                         std::to_string(pass.stitch));
     }
     const std::int64_t speed = pass.speed == 0 ? 0 : pass.speed + 10;
     if (got.left[5] != (speed & 0xFF)) {

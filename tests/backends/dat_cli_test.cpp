@@ -27,8 +27,7 @@ class DatCliTest : public ::testing::Test {
 
 TEST_F(DatCliTest, WritesADatAndVerifiesIt) {
   write_file(path("a.k"), kProgram);
-  const auto result =
-      run_wearknit("dat '" + path("a.k") + "' -o '" + path("a.dat") + "' --verify");
+  const auto result = run_wearknit("dat '" + path("a.k") + "' -o '" + path("a.dat") + "' --verify");
   EXPECT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(result.err, "");
   const std::string bytes = read_file(path("a.dat"));
@@ -58,8 +57,8 @@ TEST_F(DatCliTest, DiagnosticsAsJson) {
 
 TEST_F(DatCliTest, OtherMachinesAreAUsageError) {
   write_file(path("a.k"), kProgram);
-  const auto result = run_wearknit("dat '" + path("a.k") + "' -o '" + path("a.dat") +
-                                   "' --machine kniterate");
+  const auto result =
+      run_wearknit("dat '" + path("a.k") + "' -o '" + path("a.dat") + "' --machine kniterate");
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(result.err,
             "wearknit dat: machine 'kniterate' has no DAT profile; the DAT backend writes for "
@@ -95,7 +94,8 @@ TEST_F(DatCliTest, DatInfoDrawsAPng) {
   const std::string png = read_file(path("a.png"));
   ASSERT_GT(png.size(), 24u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
-  EXPECT_EQ(static_cast<unsigned char>(png[18]) * 256 + static_cast<unsigned char>(png[19]), 112 * 3);
+  EXPECT_EQ(static_cast<unsigned char>(png[18]) * 256 + static_cast<unsigned char>(png[19]),
+            112 * 3);
 }
 
 TEST_F(DatCliTest, DatInfoRejectsACorruptFile) {

@@ -70,8 +70,7 @@ TEST(DatCorpusTest, AcceptedFilesMatchTheReferenceByteForByte) {
     SCOPED_TRACE(knitout.filename().string());
     Outcome outcome;
     convert(knitout, outcome);
-    ASSERT_FALSE(outcome.sink.has_errors())
-        << knitout::format(outcome.sink.diagnostics().front());
+    ASSERT_FALSE(outcome.sink.has_errors()) << knitout::format(outcome.sink.diagnostics().front());
     ASSERT_TRUE(outcome.bytes.has_value());
     const auto expected = bytes_of(wearknit::test::read_file(reference));
     EXPECT_TRUE(*outcome.bytes == expected)

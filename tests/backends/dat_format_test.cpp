@@ -179,13 +179,13 @@ void read_everything(const std::vector<std::uint8_t>& bytes) {
 
 std::vector<std::uint8_t> small_dat() {
   knitout::DiagnosticSink sink;
-  auto passes = form_passes(knitout::parse_string(
-                                ";!knitout-2\n;;Carriers: 1 2 3 4 5 6 7 8 9 10\ninhook 3\n"
-                                "knit + f1 3\nknit + f2 3\nreleasehook 3\nknit - f2 3\n"
-                                "xfer f1 b1\nrack 1\nxfer b1 f2\nrack 0\nknit - f1 3\n"
-                                "outhook 3\n",
-                                "small.k", sink),
-                            "small.k", sink);
+  auto passes =
+      form_passes(knitout::parse_string(";!knitout-2\n;;Carriers: 1 2 3 4 5 6 7 8 9 10\ninhook 3\n"
+                                        "knit + f1 3\nknit + f2 3\nreleasehook 3\nknit - f2 3\n"
+                                        "xfer f1 b1\nrack 1\nxfer b1 f2\nrack 0\nknit - f1 3\n"
+                                        "outhook 3\n",
+                                        "small.k", sink),
+                  "small.k", sink);
   EXPECT_TRUE(passes.has_value());
   auto bytes = write_dat(*passes, sink);
   EXPECT_TRUE(bytes.has_value());
@@ -213,7 +213,8 @@ TEST(DatFormatTest, RandomlyCorruptedFilesNeverCrashTheReader) {
       // Corrupt the header and data more often than the palette, which
       // any byte value is valid for.
       std::size_t at = where(random);
-      if (trial % 2 == 0) at = trial % 4 == 0 ? at % 16 : kDataOffset + at % (bytes.size() - kDataOffset);
+      if (trial % 2 == 0)
+        at = trial % 4 == 0 ? at % 16 : kDataOffset + at % (bytes.size() - kDataOffset);
       bytes[at] = static_cast<std::uint8_t>(value(random));
     }
     if (trial % 7 == 0) bytes.resize(where(random));

@@ -233,7 +233,8 @@ TEST(DatPassesTest, HalfRackingIsRejected) {
 TEST(DatPassesTest, SliderToSliderIsRejected) {
   Result r;
   run("xfer fs1 bs1\n", r);
-  EXPECT_EQ(r.first_error(), "t.k:3: error: [D026] cannot move loops from slider fs1 to slider bs1");
+  EXPECT_EQ(r.first_error(),
+            "t.k:3: error: [D026] cannot move loops from slider fs1 to slider bs1");
 }
 
 TEST(DatPassesTest, SplitViaSlidersMustBeReturned) {
@@ -323,8 +324,8 @@ TEST(DatPassesTest, UnsupportedExtensionsAreWarnedAboutOnce) {
 TEST(DatPassesTest, CarriagePassesSummariseWhatTheDatHolds) {
   knitout::DiagnosticSink sink;
   const auto program = knitout::parse_string(
-      kHead + "in 3\nknit + f1 3\nknit + f2 3\nxfer f1 b1\nxfer f2 b2\nknit - f3 3\nout 3\n",
-      "t.k", sink);
+      kHead + "in 3\nknit + f1 3\nknit + f2 3\nxfer f1 b1\nxfer f2 b2\nknit - f3 3\nout 3\n", "t.k",
+      sink);
   const auto passes = carriage_passes(program, "t.k", sink);
   ASSERT_TRUE(passes.has_value());
   // knits, transfers, two kicks (the carrier went right past f2, the knit
@@ -363,6 +364,24 @@ TEST(DatPassesTest, ProgramAndStreamGiveTheSamePasses) {
   const auto y = write_dat(*whole, b);
   ASSERT_TRUE(x && y);
   EXPECT_EQ(*x, *y);
+}
+
+TEST(DatPassesTest, VerifyFindsTheWrittenPassesAndNoticesAChangedPixel) {
+  Result r;
+  run("in 3\nknit + f1 3\nknit + f2 3\nxfer f1 b1\nknit - f2 3\nout 3\n", r);
+  ASSERT_TRUE(r.bytes.has_value()) << r.first_error();
+  knitout::DiagnosticSink sink;
+  Raster raster = decode(*r.bytes, "t.dat", sink);
+  auto layout = read_layout(raster, "t.dat", sink);
+  ASSERT_TRUE(layout.has_value());
+  EXPECT_TRUE(compare_passes(*r.passes, *layout).empty());
+  // The first pass's first knit (row 8, column 55) becomes a tuck.
+  raster.pixels[static_cast<std::size_t>(8 * raster.width + 55)] = 11;
+  auto changed = read_layout(raster, "t.dat", sink);
+  ASSERT_TRUE(changed.has_value());
+  EXPECT_EQ(compare_passes(*r.passes, *changed),
+            (std::vector<std::string>{"pass 1 (line 4, row 8): operations differ (expected "
+                                      "knit-front at slot column 0)"}));
 }
 
 }  // namespace
