@@ -65,6 +65,23 @@ TEST_F(DatCliTest, OtherMachinesAreAUsageError) {
             "swg091n2\n");
 }
 
+TEST_F(DatCliTest, ReadsKnitoutFromStdin) {
+  const auto result = run_wearknit("dat - -o '" + path("s.dat") + "'", kProgram);
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  write_file(path("a.k"), kProgram);
+  ASSERT_EQ(run_wearknit("dat '" + path("a.k") + "' -o '" + path("a.dat") + "'").exit_code, 0);
+  EXPECT_EQ(read_file(path("s.dat")), read_file(path("a.dat")));
+}
+
+TEST_F(DatCliTest, UnwritableOutputIsAnIoError) {
+  write_file(path("a.k"), kProgram);
+  const auto result =
+      run_wearknit("dat '" + path("a.k") + "' -o '" + path("no/such/dir/a.dat") + "'");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.err.find("wearknit dat: "), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(path("no")));
+}
+
 TEST_F(DatCliTest, DatInfoPrintsSizePositionAndPasses) {
   write_file(path("a.k"), kProgram);
   ASSERT_EQ(run_wearknit("dat '" + path("a.k") + "' -o '" + path("a.dat") + "'").exit_code, 0);
