@@ -108,6 +108,24 @@ TEST(DatCorpusTest, RejectedFilesAreRejectedAtALine) {
   EXPECT_EQ(rejected, 55);
 }
 
+// The failure message of the byte comparison locates a difference in the
+// picture, not only in the bytes.
+TEST(DatCorpusTest, MismatchMessageNamesTheFirstDifferingRowAndColumn) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const auto reference = bytes_of(
+      wearknit::test::read_file(shared / "corpus" / "dat-reference" / "gen-plain-20x10.dat"));
+  knitout::DiagnosticSink sink;
+  Raster raster = decode(reference, "reference", sink);
+  ASSERT_FALSE(sink.has_errors());
+  const std::uint8_t was = raster.at(60, 9);
+  raster.pixels[static_cast<std::size_t>(9 * raster.width + 60)] = 11;
+  EXPECT_EQ(first_difference(encode(raster), reference),
+            "row 9 column 60: colour 11 vs reference " + std::to_string(was));
+  auto header = reference;
+  header[4] ^= 1;
+  EXPECT_EQ(first_difference(header, reference), "header byte 4");
+}
+
 // The reasons for a few rejections, checked by code and line.
 TEST(DatCorpusTest, RejectionsNameTheCodeAndLine) {
   WEARKNIT_REQUIRE_SHARED(shared);
