@@ -7,6 +7,7 @@
 #include "apps/wearknit/cli.hpp"
 #include "backends/dat/format.hpp"
 #include "backends/dat/passes.hpp"
+#include "backends/dat/profile.hpp"
 #include "backends/dat/raster.hpp"
 #include "backends/dat/reader.hpp"
 #include "knitout/output_file.hpp"
@@ -40,23 +41,25 @@ int run_dat(const std::vector<std::string>& args, Context& context) {
     context.err << "wearknit dat: --format takes text or json, not '" << format_name << "'\n";
     return kExitUsage;
   }
-  if (machine != "swg091n2") {
-    context.err << "wearknit dat: machine '" << machine
-                << "' has no DAT profile; the DAT backend writes for swg091n2\n";
+  const dat::Profile* profile = dat::find_profile(machine);
+  if (profile == nullptr) {
+    context.err << "wearknit dat: machine '" << machine << "' has no DAT profile; profiles:";
+    for (std::string_view name : dat::profile_names()) context.err << ' ' << name;
+    context.err << '\n';
     return kExitUsage;
   }
 
   knitout::DiagnosticSink sink;
   std::optional<dat::PassList> passes;
   if (input == "-") {
-    passes = dat::form_passes(std::cin, "<stdin>", sink);
+    passes = dat::form_passes(std::cin, "<stdin>", sink, *profile);
   } else {
     std::ifstream in(input, std::ios::binary);
     if (!in) {
       context.err << input << ": error: cannot open file\n";
       return kExitUsage;
     }
-    passes = dat::form_passes(in, input, sink);
+    passes = dat::form_passes(in, input, sink, *profile);
   }
   std::optional<std::vector<std::uint8_t>> bytes;
   if (passes) bytes = dat::write_dat(*passes, sink);

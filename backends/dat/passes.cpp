@@ -82,20 +82,6 @@ Direction opposite(Direction direction) {
   return Direction::None;
 }
 
-// The stitch-number table of the swg091n2 profile: `stitch L T` selects the
-// machine stitch number for stitch value T with leading value L.
-struct StitchEntry {
-  int stitch;
-  int leading;
-  int number;
-};
-constexpr std::array<StitchEntry, 20> kStitchTable = {{
-    {10, -10, 81}, {10, 0, 82},  {10, 10, 83}, {15, 5, 84},  {15, 10, 85},
-    {15, 15, 86},  {20, 10, 87}, {20, 15, 88}, {20, 20, 89}, {25, 15, 90},
-    {25, 20, 91},  {25, 25, 92}, {30, 25, 93}, {35, 25, 94}, {40, 25, 95},
-    {45, 25, 96},  {50, 25, 97}, {55, 25, 98}, {60, 25, 99}, {65, 25, 100},
-}};
-
 // Digits, then an optional '.', then digits: the only numbers the reference
 // takes for Gauge.
 bool is_plain_decimal(std::string_view text) {
@@ -166,9 +152,11 @@ std::string to_string(const CarrierSet& carriers) {
   return text;
 }
 
-PassBuilder::PassBuilder(std::string source, knitout::DiagnosticSink& sink)
-    : source_(std::move(source)), sink_(sink) {
+PassBuilder::PassBuilder(std::string source, knitout::DiagnosticSink& sink, const Profile& profile)
+    : source_(std::move(source)), sink_(sink), profile_(profile), stitch_(profile.default_stitch) {
   list_.source = source_;
+  list_.profile = &profile;
+  list_.bed_width = profile.default_bed_width;
 }
 
 bool PassBuilder::error(std::uint32_t line, std::string_view code, std::string message) {
@@ -195,7 +183,7 @@ std::uint8_t PassBuilder::carrier_number(knitout::CarrierId id,
   while (id_numbers_.size() < table.size()) {
     const std::string& name = table.name(static_cast<knitout::CarrierId>(id_numbers_.size()));
     std::uint8_t number = 0;
-    for (int n = 1; n <= 10; ++n) {
+    for (int n = 1; n <= profile_.carrier_count && n < static_cast<int>(carriers_.size()); ++n) {
       if (name == std::to_string(n)) number = static_cast<std::uint8_t>(n);
     }
     id_numbers_.push_back(number);
@@ -270,8 +258,10 @@ bool PassBuilder::begin(bool has_magic, const std::vector<knitout::Header>& head
   }
   if (carriers == nullptr) {
     return error(1, "D002",
-                 "no ';;Carriers:' header; the swg091n2 profile needs "
-                 "';;Carriers: 1 2 3 4 5 6 7 8 9 10'");
+                 "no ';;Carriers:' header; the " + std::string(profile_.name) +
+                     " profile needs "
+                     "';;Carriers: " +
+                     std::string(profile_.carriers_header) + "'");
   }
   // The reference splits the value on runs of spaces and joins it with one.
   std::string collapsed;
@@ -279,10 +269,11 @@ bool PassBuilder::begin(bool has_magic, const std::vector<knitout::Header>& head
     if (c == ' ' && !collapsed.empty() && collapsed.back() == ' ') continue;
     collapsed += c;
   }
-  if (collapsed != "1 2 3 4 5 6 7 8 9 10") {
+  if (collapsed != profile_.carriers_header) {
     return error(carriers->line, "D003",
-                 "Carriers header '" + carriers->value +
-                     "' is not '1 2 3 4 5 6 7 8 9 10', the carriers of the swg091n2 profile");
+                 "Carriers header '" + carriers->value + "' is not '" +
+                     std::string(profile_.carriers_header) + "', the carriers of the " +
+                     std::string(profile_.name) + " profile");
   }
   return true;
 }
@@ -489,7 +480,7 @@ bool PassBuilder::add(const Instruction& in, const knitout::CarrierTable& table,
       if (leading != std::floor(leading) || stitch != std::floor(stitch)) {
         return error(line, "D023", "stitch takes two whole numbers (leading, stitch value)");
       }
-      for (const StitchEntry& entry : kStitchTable) {
+      for (const StitchEntry& entry : profile_.stitch_table) {
         if (entry.stitch == stitch && entry.leading == leading) {
           stitch_ = entry.number;
           return true;
@@ -498,8 +489,8 @@ bool PassBuilder::add(const Instruction& in, const knitout::CarrierTable& table,
       return error(line, "D023",
                    "stitch " + format_number(leading) + " " + format_number(stitch) + ": leading " +
                        format_number(leading) + " with stitch value " + format_number(stitch) +
-                       " is not in the swg091n2 stitch table (docs/dat.md); use "
-                       "x-stitch-number");
+                       " is not in the " + std::string(profile_.name) +
+                       " stitch table (docs/dat.md); use x-stitch-number");
     }
     case Op::Knit:
     case Op::Tuck:
@@ -921,9 +912,9 @@ bool PassBuilder::finish(std::uint32_t last_line) {
 }
 
 std::optional<PassList> form_passes(std::istream& in, std::string source,
-                                    knitout::DiagnosticSink& sink) {
+                                    knitout::DiagnosticSink& sink, const Profile& profile) {
   knitout::Reader reader(in, source, sink);
-  PassBuilder builder(source, sink);
+  PassBuilder builder(source, sink, profile);
   if (!sink.has_errors()) builder.begin(reader.has_magic(), reader.headers());
   Instruction instruction;
   while (reader.next(instruction)) {
@@ -937,8 +928,8 @@ std::optional<PassList> form_passes(std::istream& in, std::string source,
 }
 
 std::optional<PassList> form_passes(const knitout::Program& program, std::string source,
-                                    knitout::DiagnosticSink& sink) {
-  PassBuilder builder(source, sink);
+                                    knitout::DiagnosticSink& sink, const Profile& profile) {
+  PassBuilder builder(source, sink, profile);
   if (!builder.begin(program.has_magic, program.headers)) return std::nullopt;
   std::uint32_t last_line = 0;
   for (const Instruction& instruction : program.instructions) {
@@ -953,8 +944,9 @@ std::optional<PassList> form_passes(const knitout::Program& program, std::string
 
 std::optional<std::vector<CarriagePass>> carriage_passes(const knitout::Program& program,
                                                          std::string source,
-                                                         knitout::DiagnosticSink& sink) {
-  auto list = form_passes(program, std::move(source), sink);
+                                                         knitout::DiagnosticSink& sink,
+                                                         const Profile& profile) {
+  auto list = form_passes(program, std::move(source), sink, profile);
   if (!list) return std::nullopt;
   std::vector<CarriagePass> result;
   result.reserve(list->passes.size());

@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "backends/dat/profile.hpp"
 #include "knitout/diagnostic.hpp"
 #include "knitout/parser.hpp"
 #include "knitout/program.hpp"
@@ -124,7 +125,8 @@ enum class Position : std::uint8_t { Center, Keep, Left, Right };
 struct PassList {
   std::vector<Pass> passes;
   std::vector<SlotEntry> entries;  // each pass's slots, contiguous
-  std::int64_t bed_width = 540;    // `;;Width:` header
+  const Profile* profile = &swg091n2();
+  std::int64_t bed_width = 540;  // `;;Width:` header, else the profile's bed
   Position position = Position::Center;
   std::string source;
 
@@ -136,7 +138,8 @@ struct PassList {
 class PassBuilder {
  public:
   // `source` names the input in diagnostics.
-  PassBuilder(std::string source, knitout::DiagnosticSink& sink);
+  PassBuilder(std::string source, knitout::DiagnosticSink& sink,
+              const Profile& profile = swg091n2());
 
   // Checks the magic line and headers as the reference does (call once,
   // before `add`). False after an error.
@@ -209,6 +212,7 @@ class PassBuilder {
 
   std::string source_;
   knitout::DiagnosticSink& sink_;
+  const Profile& profile_;
   bool failed_ = false;
   PassList list_;
   std::array<CarrierState, 11> carriers_{};  // by carrier number 1..10
@@ -232,9 +236,11 @@ class PassBuilder {
 // diagnostics (K codes) and backend diagnostics (D codes) go to `sink`.
 // nullopt on any error.
 std::optional<PassList> form_passes(std::istream& in, std::string source,
-                                    knitout::DiagnosticSink& sink);
+                                    knitout::DiagnosticSink& sink,
+                                    const Profile& profile = swg091n2());
 std::optional<PassList> form_passes(const knitout::Program& program, std::string source,
-                                    knitout::DiagnosticSink& sink);
+                                    knitout::DiagnosticSink& sink,
+                                    const Profile& profile = swg091n2());
 
 // One carriage pass as `wearknit simulate --stats` reports it.
 struct CarriagePass {
@@ -251,6 +257,7 @@ struct CarriagePass {
 // form_passes; nullopt when the program is rejected.
 std::optional<std::vector<CarriagePass>> carriage_passes(const knitout::Program& program,
                                                          std::string source,
-                                                         knitout::DiagnosticSink& sink);
+                                                         knitout::DiagnosticSink& sink,
+                                                         const Profile& profile = swg091n2());
 
 }  // namespace dat

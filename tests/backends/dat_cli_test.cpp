@@ -61,8 +61,7 @@ TEST_F(DatCliTest, OtherMachinesAreAUsageError) {
       run_wearknit("dat '" + path("a.k") + "' -o '" + path("a.dat") + "' --machine kniterate");
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(result.err,
-            "wearknit dat: machine 'kniterate' has no DAT profile; the DAT backend writes for "
-            "swg091n2\n");
+            "wearknit dat: machine 'kniterate' has no DAT profile; profiles: swg091n2\n");
 }
 
 TEST_F(DatCliTest, ReadsKnitoutFromStdin) {
