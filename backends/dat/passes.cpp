@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <istream>
 
 namespace dat {
@@ -107,7 +106,9 @@ std::string format_number(double value) {
   return text;
 }
 
-constexpr double kMaxSaneRacking = 1000;  // far beyond any machine's +-8
+// Rejected at the `rack` already: far beyond any machine, and slot numbers
+// (needle + racking) must not overflow.
+constexpr double kMaxSaneRacking = 1000;
 
 }  // namespace
 
@@ -468,7 +469,9 @@ bool PassBuilder::add(const Instruction& in, const knitout::CarrierTable& table,
       }
       if (std::abs(racking) > kMaxSaneRacking) {
         return error(line, "D021",
-                     "racking " + format_number(racking) + " is beyond the machine's range -8..8");
+                     "racking " + format_number(racking) + " is beyond the machine's range -" +
+                         format_number(profile_.max_racking) + ".." +
+                         format_number(profile_.max_racking));
       }
       racking_ = racking;
       return true;
