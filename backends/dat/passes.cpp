@@ -726,7 +726,7 @@ void PassBuilder::kick_others(NeedleRef needle, const CarrierSet& cs) {
     one.ids[one.size++] = c;
     merge(make_candidate(PassType::KnitTuck, want, one, last_slot, SlotOp::SoftMiss, stitch_));
     state.kick_direction = want;
-    state.kick_needle = NeedleRef{Bed::Front, static_cast<std::int32_t>(last_slot)};
+    state.kick_needle = NeedleRef{Bed::Front, last_slot};
   }
 }
 
@@ -795,7 +795,7 @@ void PassBuilder::merge(Candidate candidate) {
     }
     merge(kick);
     for (std::uint8_t c : set) {
-      carriers_[c].kick_needle = NeedleRef{Bed::Front, static_cast<std::int32_t>(slot)};
+      carriers_[c].kick_needle = NeedleRef{Bed::Front, slot};
       carriers_[c].kick_direction = kick_direction;
     }
   }

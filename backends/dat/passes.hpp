@@ -160,7 +160,7 @@ class PassBuilder {
  private:
   struct NeedleRef {
     knitout::Bed bed = knitout::Bed::Front;
-    std::int32_t index = 0;
+    std::int64_t index = 0;  // kicks park carriers at slots, which may exceed int32
     bool operator==(const NeedleRef&) const = default;
   };
   struct CarrierState {

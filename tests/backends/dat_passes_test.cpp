@@ -3,6 +3,8 @@
 // same program; where it crashes, the backend gives a clear error.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "backends/dat/passes.hpp"
 #include "backends/dat/raster.hpp"
 #include "backends/dat/reader.hpp"
@@ -382,6 +384,85 @@ TEST(DatPassesTest, VerifyFindsTheWrittenPassesAndNoticesAChangedPixel) {
   EXPECT_EQ(compare_passes(*r.passes, *changed),
             (std::vector<std::string>{"pass 1 (line 4, row 8): operations differ (expected "
                                       "knit-front at slot column 0)"}));
+}
+
+// Random programs (fixed seed) from a vocabulary biased towards valid
+// knitout: whatever the backend decides, it must not crash, and every DAT
+// it writes must read back to the passes it formed.
+TEST(DatPassesTest, RandomProgramsNeverCrashAndReadBackAsWritten) {
+  std::mt19937 random(4242);
+  auto chance = [&](int percent) {
+    return std::uniform_int_distribution<int>(0, 99)(random) < percent;
+  };
+  auto pick = [&](const std::vector<std::string>& items) {
+    return items[std::uniform_int_distribution<std::size_t>(0, items.size() - 1)(random)];
+  };
+  auto index = [&]() { return std::uniform_int_distribution<int>(-3, 12)(random); };
+  int accepted = 0;
+  int rejected = 0;
+  for (int program = 0; program < 300; ++program) {
+    // Two carriers in and used; mostly valid operations on them; rarely
+    // something the backend rejects.
+    std::string body = "in 3\nknit + f0 3\nin 4\nknit + f1 4\n";
+    int racking = 0;
+    bool quarter = false;
+    const int lines = std::uniform_int_distribution<int>(1, 60)(random);
+    for (int i = 0; i < lines; ++i) {
+      const std::string cs = chance(3) ? pick({"1 2 3", "11", "5"}) : pick({"3", "4", "3 4"});
+      const std::string dir = chance(50) ? "+" : "-";
+      const std::string bed = chance(70) ? "f" : "b";
+      const int kind = std::uniform_int_distribution<int>(0, 9)(random);
+      if (kind == 0) {
+        racking = std::uniform_int_distribution<int>(-2, 2)(random);
+        quarter = chance(25);
+        if (chance(3)) {
+          body += pick({"rack 9", "rack 0.5"});
+        } else {
+          body += "rack " + std::to_string(racking) + (quarter ? ".25" : "");
+        }
+      } else if (kind == 1) {
+        body += pick({"pause", "x-speed-number 4", "x-stitch-number 300", "x-presser-mode auto",
+                      "x-presser-mode on", "x-presser-mode off", "stitch 20 20", "x-foo 1"});
+      } else if (kind < 7) {
+        body += pick({"knit ", "knit ", "tuck ", "miss "}) + dir + " " + bed +
+                std::to_string(index()) + " " + cs;
+      } else if (kind == 7) {
+        body += pick({"drop ", "amiss "}) + bed + std::to_string(index());
+      } else {
+        // Transfers and splits between facing needles (random when quarter pitched).
+        const int n = index();
+        const bool to_back = chance(50);
+        const int m = quarter ? index() : (to_back ? n - racking : n + racking);
+        const std::string from = (to_back ? "f" : "b") + std::string(chance(10) ? "s" : "");
+        const std::string to = (to_back ? "b" : "f") + std::string(chance(10) ? "s" : "");
+        if (kind == 8) {
+          body += "xfer " + from + std::to_string(n) + " " + to + std::to_string(m);
+        } else {
+          body += "split " + dir + " " + from + std::to_string(n) + " " + to + std::to_string(m) +
+                  " " + cs;
+        }
+      }
+      body += '\n';
+    }
+    body += chance(95) ? "out 3\nout 4\n" : "out 3\n";
+    SCOPED_TRACE(body);
+    Result r;
+    run(body, r);
+    if (!r.bytes) {
+      EXPECT_TRUE(r.sink.has_errors());
+      ++rejected;
+      continue;
+    }
+    ++accepted;
+    knitout::DiagnosticSink sink;
+    const Raster raster = decode(*r.bytes, "r.dat", sink);
+    auto layout = read_layout(raster, "r.dat", sink);
+    ASSERT_TRUE(layout.has_value());
+    EXPECT_EQ(compare_passes(*r.passes, *layout), std::vector<std::string>{});
+  }
+  // Both outcomes are exercised.
+  EXPECT_GT(accepted, 30);
+  EXPECT_GT(rejected, 30);
 }
 
 }  // namespace
