@@ -11,6 +11,12 @@ namespace po = boost::program_options;
 const std::vector<Verb>& verbs() {
   static const std::vector<Verb> kVerbs = {
       {"fmt", "fmt FILE.k [-o OUT.k] [--check]", "write a knitout file in canonical form", run_fmt},
+      {"validate", "validate FILE.k... [--machine M] [--werror] [--format text|json|junit|github]",
+       "run every instruction through the needle-bed virtual machine", run_validate},
+      {"simulate",
+       "simulate FILE.k [--stats] [--json] [--bed-view OUT.png|OUT.svg] "
+       "[--knit-graph OUT.json] [--machine M]",
+       "dry run: statistics, estimated machine time, bed view, knit graph", run_simulate},
       {"dat", "dat FILE.k -o OUT.dat [--machine M] [--verify]",
        "knitout -> Shima Seiki DAT (swg091n2), byte for byte as knitout-to-dat.js", run_dat},
       {"dat-info", "dat-info FILE.dat [--passes] [--png OUT.png]",
