@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstdint>
+#include <iosfwd>
 #include <optional>
 #include <set>
 #include <span>
@@ -255,9 +256,26 @@ struct CarriagePass {
 // The carriage passes the DAT backend forms for `program`, in order (the
 // rows of the DAT between its fixed courses). Diagnostics as for
 // form_passes; nullopt when the program is rejected.
+//
+// To report them while streaming a file through another consumer (as
+// `simulate` streams into the VM), feed the same instructions to a
+// PassBuilder with a sink of its own: begin(reader.has_magic(),
+// reader.headers()), add(instruction, reader.carriers(), reader.text()) per
+// instruction, finish(reader.lines_read()), then summarize(builder.passes())
+// unless builder.failed().
 std::optional<std::vector<CarriagePass>> carriage_passes(const knitout::Program& program,
                                                          std::string source,
                                                          knitout::DiagnosticSink& sink,
                                                          const Profile& profile = swg091n2());
+std::vector<CarriagePass> summarize(const PassList& passes);
+
+// "carriage passes: 6 (4 knit-tuck, 1 xfer, 1 a-miss)" and, when
+// `each_pass`, one line per pass: "  pass 1 (line 4): + carriers 3 racking 0
+// knit-tuck, 2 slots".
+void write_carriage_passes_text(std::ostream& out, const std::vector<CarriagePass>& passes,
+                                bool each_pass);
+// {"count": N, "passes": [{"type": "knit-tuck", "direction": "+", "carriers":
+// ["3"], "racking": 0, "slots": 2, "line": 4}, ...]}
+void write_carriage_passes_json(std::ostream& out, const std::vector<CarriagePass>& passes);
 
 }  // namespace dat

@@ -352,6 +352,36 @@ TEST(DatPassesTest, CarriagePassesSummariseWhatTheDatHolds) {
   EXPECT_TRUE(bad_sink.has_errors());
 }
 
+TEST(DatPassesTest, CarriagePassesPrintAsTextAndJson) {
+  // Streamed as `simulate` would: a PassBuilder fed instruction by instruction.
+  std::istringstream in(kHead +
+                        "in 3\nknit + f1 3\nknit + f2 3\nxfer f1 b1\nrack 0.25\n"
+                        "knit - f2 3\nrack 0\nout 3\n");
+  knitout::DiagnosticSink sink;
+  knitout::Reader reader(in, "t.k", sink);
+  PassBuilder builder("t.k", sink);
+  ASSERT_TRUE(builder.begin(reader.has_magic(), reader.headers()));
+  knitout::Instruction instruction;
+  while (reader.next(instruction)) builder.add(instruction, reader.carriers(), reader.text());
+  ASSERT_TRUE(builder.finish(static_cast<std::uint32_t>(reader.lines_read())));
+  const std::vector<CarriagePass> passes = summarize(builder.passes());
+  std::ostringstream text;
+  write_carriage_passes_text(text, passes, true);
+  EXPECT_EQ(text.str(),
+            "carriage passes: 4 (3 knit-tuck, 1 xfer)\n"
+            "  pass 1 (line 4): + carriers 3 racking 0 knit-tuck, 2 slots\n"
+            "  pass 2 (line 6): none carriers - racking 0 xfer, 1 slot\n"
+            "  pass 3 (line 8): - carriers 3 racking 0.25 knit-tuck, 1 slot\n"
+            "  pass 4 (line 10): + carriers 3 racking 0 knit-tuck, 1 slot\n");
+  std::ostringstream json;
+  write_carriage_passes_json(json, std::vector<CarriagePass>(passes.begin(), passes.begin() + 2));
+  EXPECT_EQ(json.str(),
+            "{\"count\": 2, \"passes\": [{\"type\": \"knit-tuck\", \"direction\": \"+\", "
+            "\"carriers\": [\"3\"], \"racking\": 0, \"slots\": 2, \"line\": 4}, {\"type\": "
+            "\"xfer\", \"direction\": \"none\", \"carriers\": [], \"racking\": 0, \"slots\": 1, "
+            "\"line\": 6}]}");
+}
+
 TEST(DatPassesTest, ProgramAndStreamGiveTheSamePasses) {
   const std::string text = kHead +
                            "inhook 3\nknit + f1 3\nknit + f2 3\nreleasehook 3\nrack 0.25\n"
