@@ -58,5 +58,7 @@ int run_fmt(const std::vector<std::string>& args, Context& context);
 int run_demo(const std::vector<std::string>& args, Context& context);
 int run_validate(const std::vector<std::string>& args, Context& context);
 int run_simulate(const std::vector<std::string>& args, Context& context);
+int run_dat(const std::vector<std::string>& args, Context& context);
+int run_dat_info(const std::vector<std::string>& args, Context& context);
 
 }  // namespace wearknit::cli
