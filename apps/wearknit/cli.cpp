@@ -14,7 +14,7 @@ const std::vector<Verb>& verbs() {
       {"validate", "validate FILE.k... [--machine M] [--werror] [--format text|json|junit|github]",
        "run every instruction through the needle-bed virtual machine", run_validate},
       {"simulate",
-       "simulate FILE.k [--stats] [--json] [--bed-view OUT.png|OUT.svg] "
+       "simulate FILE.k [--stats] [--passes] [--json] [--bed-view OUT.png|OUT.svg] "
        "[--knit-graph OUT.json] [--machine M]",
        "dry run: statistics, estimated machine time, bed view, knit graph", run_simulate},
       {"dat", "dat FILE.k -o OUT.dat [--machine M] [--verify]",

@@ -131,3 +131,40 @@ TEST_F(DatCliTest, DatInfoOnAMissingFileIsAnIoError) {
 
 }  // namespace
 }  // namespace wearknit::cli
+
+// simulate --stats reports the passes this backend forms: as many as the
+// reference DAT of the same program holds.
+TEST(DatSimulateTest, SimulateReportsTheCarriagePassesOfTheReferenceDat) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  for (const char* name : {"kex-rectangle", "swg-rib2x2", "mil-interlock", "gen-features"}) {
+    SCOPED_TRACE(name);
+    const auto info = wearknit::test::run_wearknit(
+        "dat-info '" +
+        (shared / "corpus" / "dat-reference" / (std::string(name) + ".dat")).string() + "'");
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    const std::size_t passes_at = info.out.find(" passes");
+    ASSERT_NE(passes_at, std::string::npos) << info.out;
+    const std::size_t number_at = info.out.rfind(' ', passes_at - 1) + 1;
+    const std::string reference_passes = info.out.substr(number_at, passes_at - number_at);
+
+    const auto simulate = wearknit::test::run_wearknit(
+        "simulate '" + (shared / "corpus" / "knitout" / (std::string(name) + ".k")).string() + "'");
+    EXPECT_EQ(simulate.exit_code, 0) << simulate.err;
+    EXPECT_NE(simulate.out.find("  DAT passes           " + reference_passes + "\n"),
+              std::string::npos)
+        << simulate.out;
+    EXPECT_NE(simulate.out.find("  carriage passes: " + reference_passes + " ("), std::string::npos)
+        << simulate.out;
+  }
+}
+
+TEST(DatSimulateTest, SimulateSaysWhyAProgramHasNoPasses) {
+  const auto result = wearknit::test::run_wearknit(
+      "simulate -",
+      ";!knitout-2\n;;Carriers: 1 2 3\ninhook 3\ntuck + f1 3\nreleasehook 3\nouthook 3\n");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("  carriage passes: none formed (the DAT backend refuses the program: "
+                            "<stdin>:2: error: [D003]"),
+            std::string::npos)
+      << result.out;
+}
