@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <queue>
@@ -10,7 +11,6 @@
 #include <stdexcept>
 #include <thread>
 #include <unordered_map>
-#include <limits>
 
 #include "simulators/cloth/parallel.hpp"
 
@@ -62,7 +62,9 @@ struct UnionFind {
 
 }  // namespace
 
-const char* to_string(Label label) { return label == Label::Sew ? "sew" : "lace"; }
+const char* to_string(Label label) {
+  return label == Label::Sew ? "sew" : "lace";
+}
 
 std::vector<std::string> validate(const CoverMesh& mesh) {
   std::vector<std::string> problems;
@@ -245,7 +247,8 @@ cloth::ClothMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
     for (std::size_t i = 0; i < face.size(); ++i) {
       const int a = face[i], b = face[(i + 1) % face.size()];
       if (cut.contains(edge_key(a, b))) continue;
-      const std::uint64_t twin = (static_cast<std::uint64_t>(b) << 32) | static_cast<std::uint32_t>(a);
+      const std::uint64_t twin =
+          (static_cast<std::uint64_t>(b) << 32) | static_cast<std::uint32_t>(a);
       const auto it = half_edge.find(twin);
       if (it == half_edge.end()) continue;  // boundary
       // Twin b→a starts at corner `it->second` (vertex b); its next corner
@@ -253,12 +256,13 @@ cloth::ClothMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
       const int corner_a = first_corner[f] + static_cast<int>(i);
       const int corner_b = first_corner[f] + static_cast<int>((i + 1) % face.size());
       const int twin_b = it->second;
-      int twin_face = static_cast<int>(std::upper_bound(first_corner.begin(), first_corner.end(),
-                                                        twin_b) -
-                                       first_corner.begin()) -
-                      1;
+      int twin_face =
+          static_cast<int>(std::upper_bound(first_corner.begin(), first_corner.end(), twin_b) -
+                           first_corner.begin()) -
+          1;
       const int twin_size = static_cast<int>(mesh.faces[twin_face].size());
-      const int twin_a = first_corner[twin_face] + (twin_b - first_corner[twin_face] + 1) % twin_size;
+      const int twin_a =
+          first_corner[twin_face] + (twin_b - first_corner[twin_face] + 1) % twin_size;
       corners.unite(corner_a, twin_a);
       corners.unite(corner_b, twin_b);
     }
@@ -396,8 +400,7 @@ EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceFi
       if (progress) progress(report);
     }
   }
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 

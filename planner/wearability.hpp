@@ -45,8 +45,8 @@ struct CutArc {
 };
 
 struct CoverMesh {
-  std::vector<Vec3> vertices;             // welded: one vertex per point of the garment
-  std::vector<std::vector<int>> faces;    // polygons, counter-clockwise seen from outside
+  std::vector<Vec3> vertices;           // welded: one vertex per point of the garment
+  std::vector<std::vector<int>> faces;  // polygons, counter-clockwise seen from outside
   std::vector<CutArc> arcs;
 };
 
@@ -110,9 +110,9 @@ struct ArcResult {
 };
 
 struct EliminationResult {
-  TestResult initial;             // every arc open
-  std::vector<int> order;         // arcs in the order they were tested
-  std::vector<ArcResult> arcs;    // by arc index
+  TestResult initial;           // every arc open
+  std::vector<int> order;       // arcs in the order they were tested
+  std::vector<ArcResult> arcs;  // by arc index
   double seconds = 0;
   std::uint64_t steps = 0;
   std::uint64_t projections = 0;

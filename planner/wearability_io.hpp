@@ -18,10 +18,9 @@
 #pragma once
 
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "knitout/diagnostic.hpp"
 #include "planner/wearability.hpp"

@@ -37,7 +37,8 @@ void colour_pairs(std::size_t vertex_count, const std::vector<std::array<int, 2>
     auto& ua = used[pairs[s][0]];
     auto& ub = used[pairs[s][1]];
     int c = 0;
-    while ((c < static_cast<int>(ua.size()) && ua[c]) || (c < static_cast<int>(ub.size()) && ub[c])) {
+    while ((c < static_cast<int>(ua.size()) && ua[c]) ||
+           (c < static_cast<int>(ub.size()) && ub[c])) {
       ++c;
     }
     if (static_cast<int>(ua.size()) <= c) ua.resize(c + 1, false);
@@ -60,7 +61,8 @@ std::vector<Spring> build_springs(const ClothMesh& mesh) {
   const int n = static_cast<int>(mesh.positions.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     if (mesh.faces[f].size() < 3) {
-      throw std::invalid_argument("garment face " + std::to_string(f) + " has fewer than 3 vertices");
+      throw std::invalid_argument("garment face " + std::to_string(f) +
+                                  " has fewer than 3 vertices");
     }
     for (int v : mesh.faces[f]) {
       if (v < 0 || v >= n) {
@@ -78,7 +80,8 @@ std::vector<Spring> build_springs(const ClothMesh& mesh) {
     springs.push_back({a, b, (mesh.positions[a] - mesh.positions[b]).norm(), kind});
   };
   for (const auto& face : mesh.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i) add(face[i], face[(i + 1) % face.size()], SpringKind::Stretch);
+    for (std::size_t i = 0; i < face.size(); ++i)
+      add(face[i], face[(i + 1) % face.size()], SpringKind::Stretch);
   }
   for (const auto& face : mesh.faces) {
     if (face.size() != 4) continue;

@@ -102,8 +102,8 @@ struct ClothParams {
 
 struct StripResult {
   bool success = false;
-  int steps = 0;              // steps simulated
-  double min_distance = 0;    // least vertex distance to the wearer at the end, in scale units
+  int steps = 0;                  // steps simulated
+  double min_distance = 0;        // least vertex distance to the wearer at the end, in scale units
   std::uint64_t projections = 0;  // spring and collision projections done
 };
 
@@ -138,7 +138,7 @@ class ClothSimulation {
   const SignedDistanceField& wearer_;
   ClothParams params_;
   double scale_ = 1.0;
-  std::vector<Spring> springs_;  // sorted by colour
+  std::vector<Spring> springs_;    // sorted by colour
   std::vector<int> colour_begin_;  // springs_[colour_begin_[c], colour_begin_[c+1])
   std::vector<int> edge_springs_;  // indices of stretch springs, sorted by edge colour
   std::vector<int> edge_colour_begin_;

@@ -7,7 +7,9 @@
 namespace cloth {
 
 // threads <= 0 means every hardware thread.
-inline int resolve_threads(int threads) { return threads > 0 ? threads : omp_get_max_threads(); }
+inline int resolve_threads(int threads) {
+  return threads > 0 ? threads : omp_get_max_threads();
+}
 
 template <class Function>
 void parallel_for(int n, int threads, Function&& function) {

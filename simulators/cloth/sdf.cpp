@@ -76,8 +76,8 @@ TriangleMeshQuery::TriangleMeshQuery(std::vector<Vec3> vertices,
   for (const auto& t : triangles_) {
     for (int v : t) {
       if (v < 0 || static_cast<std::size_t>(v) >= vertices_.size()) {
-        throw std::invalid_argument("wearer face refers to vertex " + std::to_string(v) +
-                                    " of " + std::to_string(vertices_.size()));
+        throw std::invalid_argument("wearer face refers to vertex " + std::to_string(v) + " of " +
+                                    std::to_string(vertices_.size()));
       }
     }
   }
@@ -207,7 +207,8 @@ SignedDistanceField::SignedDistanceField(const std::vector<Vec3>& vertices,
   std::vector<std::array<int, 3>> triangles;
   for (const auto& face : faces) {
     if (face.size() < 3) throw std::invalid_argument("wearer face with fewer than 3 vertices");
-    for (std::size_t i = 1; i + 1 < face.size(); ++i) triangles.push_back({face[0], face[i], face[i + 1]});
+    for (std::size_t i = 1; i + 1 < face.size(); ++i)
+      triangles.push_back({face[0], face[i], face[i + 1]});
   }
   mesh_ = std::make_shared<const TriangleMeshQuery>(vertices, std::move(triangles));
 
@@ -268,7 +269,9 @@ double SignedDistanceField::inside_value_and_gradient(const Vec3& p, Vec3* gradi
   return y0 + (y1 - y0) * w;
 }
 
-double SignedDistanceField::value(const Vec3& p) const { return evaluate(p, nullptr); }
+double SignedDistanceField::value(const Vec3& p) const {
+  return evaluate(p, nullptr);
+}
 
 double SignedDistanceField::value_and_gradient(const Vec3& p, Vec3& gradient) const {
   return evaluate(p, &gradient);

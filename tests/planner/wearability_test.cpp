@@ -74,7 +74,7 @@ TEST(WearabilityTest, OpenCutsSplitsAlongOpenArcsOnly) {
 TEST(WearabilityTest, ValidateNamesTheBadElement) {
   CoverMesh cover = torus_cover(1.0, 0.4, 8, 4, 2);
   cover.arcs.push_back(planner::arc_from_path({0, 9}, "diagonal"));  // not an edge
-  cover.arcs.push_back(planner::arc_from_path({0, 1}));               // also in arc 0
+  cover.arcs.push_back(planner::arc_from_path({0, 1}));              // also in arc 0
   cover.faces.push_back({0, 1});
   const auto problems = planner::validate(cover);
   ASSERT_EQ(problems.size(), 3u);
@@ -121,7 +121,8 @@ TEST(WearabilityTest, ClosedShellAroundASphereIsNotWearable) {
 
 TEST(WearabilityTest, TorusCoverCutIntoADiscIsWearable) {
   const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
-  const auto result = test_open(cover, {true, true, true, true, true}, torus_field(), test_params(), 1);
+  const auto result =
+      test_open(cover, {true, true, true, true, true}, torus_field(), test_params(), 1);
   EXPECT_TRUE(result.wearable);
 }
 
@@ -129,7 +130,8 @@ TEST(WearabilityTest, TorusCoverWithAMeridianRingKeptIsNotWearable) {
   // Equator arc 1 sewn: the faces along it close into a band around the
   // tube, linked with the torus; no deformation without tearing removes it.
   const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
-  const auto result = test_open(cover, {true, false, true, true, true}, torus_field(), test_params(), 1);
+  const auto result =
+      test_open(cover, {true, false, true, true, true}, torus_field(), test_params(), 1);
   EXPECT_FALSE(result.wearable);
   EXPECT_EQ(result.trials.size(), 3u);
 }
@@ -179,9 +181,7 @@ TEST(WearabilityTest, TorusQdCoverSewsMeridianArcsAndLacesEquatorArcs) {
   // split into 4 arcs: every arc open is a disc.
   CoverMesh cover{mesh->vertices, mesh->faces, {}};
   const double pi = std::numbers::pi;
-  auto meridian = [&](double v) {
-    return Vec3(1.0 + 0.25 * std::cos(v), 0, 0.25 * std::sin(v));
-  };
+  auto meridian = [&](double v) { return Vec3(1.0 + 0.25 * std::cos(v), 0, 0.25 * std::sin(v)); };
   auto equator = [&](double u) { return Vec3(1.25 * std::cos(u), 1.25 * std::sin(u), 0); };
   for (int q = 0; q < 4; ++q) {
     std::vector<Vec3> points;
@@ -267,17 +267,19 @@ TEST(WearabilityIoTest, ReportsBadInputWithCodes) {
   knitout::DiagnosticSink sink2;
   const auto mesh = planner::read_obj(good, "m.obj", sink2);
   ASSERT_TRUE(mesh);
-  EXPECT_FALSE(planner::read_cover_mesh(*mesh, nlohmann::json::parse(R"({"arcs": [{"edges": [[0, 5]]}]})"),
-                                        "cuts.json", sink2));
+  EXPECT_FALSE(planner::read_cover_mesh(
+      *mesh, nlohmann::json::parse(R"({"arcs": [{"edges": [[0, 5]]}]})"), "cuts.json", sink2));
   EXPECT_EQ(knitout::format(sink2.diagnostics().back()),
             "cuts.json: error: [W010] arc 0: vertex index 5 is not in 0..2");
   knitout::DiagnosticSink sink3;
-  EXPECT_FALSE(planner::read_cover_mesh(*mesh, nlohmann::json::parse(R"({"arcs": [{"vertices": [0, 1, 2, 1]}]})"),
-                                        "cuts.json", sink3));
+  EXPECT_FALSE(planner::read_cover_mesh(
+      *mesh, nlohmann::json::parse(R"({"arcs": [{"vertices": [0, 1, 2, 1]}]})"), "cuts.json",
+      sink3));
   EXPECT_EQ(knitout::format(sink3.diagnostics().back()),
             "cuts.json: error: [W011] arc 0 edge 2 (2-1) is also in arc 0");
   knitout::DiagnosticSink sink4;
-  EXPECT_FALSE(planner::read_cover_mesh(*mesh, nlohmann::json::parse(R"([1, 2])"), "cuts.json", sink4));
+  EXPECT_FALSE(
+      planner::read_cover_mesh(*mesh, nlohmann::json::parse(R"([1, 2])"), "cuts.json", sink4));
   EXPECT_EQ(knitout::format(sink4.diagnostics().back()),
             "cuts.json: error: [W010] expected an object with an array \"arcs\"");
 }

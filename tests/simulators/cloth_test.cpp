@@ -84,7 +84,8 @@ TEST(ClothTest, SpringsFollowSection82) {
   }
   auto v = [](int x, int y) { return y * 3 + x; };
   for (int y = 0; y < 2; ++y) {
-    for (int x = 0; x < 2; ++x) patch.faces.push_back({v(x, y), v(x + 1, y), v(x + 1, y + 1), v(x, y + 1)});
+    for (int x = 0; x < 2; ++x)
+      patch.faces.push_back({v(x, y), v(x + 1, y), v(x + 1, y + 1), v(x, y + 1)});
   }
   const auto springs = cloth::build_springs(patch);
   int stretch = 0, shear = 0, bend = 0;
@@ -129,7 +130,8 @@ TEST(ClothTest, DressedGarmentStaysOutsideTheWearer) {
   cloth::ClothMesh garment{shell.vertices, shell.faces};
   cloth::ClothParams params;
   cloth::dress(garment, field, params.clearance);
-  for (const Vec3& x : garment.positions) EXPECT_GE(field.value(x), 0.99 * params.clearance * field.scale());
+  for (const Vec3& x : garment.positions)
+    EXPECT_GE(field.value(x), 0.99 * params.clearance * field.scale());
   params.max_steps = 200;
   cloth::ClothSimulation sim(garment, field, params);
   sim.run(3);
