@@ -175,6 +175,8 @@ ClothSimulation::ClothSimulation(const ClothMesh& garment, const SignedDistanceF
 void ClothSimulation::collide_vertices() {
   const double clearance = params_.clearance * scale_;
   parallel_for(static_cast<int>(p_.size()), params_.threads, [&](int i) {
+    // Far from the wearer by the contact plane: no lookup needed.
+    if (plane_distance(i) > 2 * clearance) return;
     Vec3 normal;
     const double d = wearer_.value_and_gradient(p_[i], normal);
     if (d < clearance) p_[i] += (clearance - d) * normal;
@@ -191,6 +193,10 @@ void ClothSimulation::collide_edges() {
     const int begin = edge_colour_begin_[c];
     parallel_for(edge_colour_begin_[c + 1] - begin, params_.threads, [&](int i) {
       const Spring& s = springs_[edge_springs_[begin + i]];
+      // The interpolated field changes by at most √3 per unit length, so a
+      // midpoint whose ends are far enough cannot touch: skip the lookup.
+      const double half = 0.5 * (p_[s.a] - p_[s.b]).norm();
+      if (std::min(plane_distance(s.a), plane_distance(s.b)) > clearance + 1.75 * half) return;
       const Vec3 mid = 0.5 * (p_[s.a] + p_[s.b]);
       Vec3 normal;
       const double d = wearer_.value_and_gradient(mid, normal);

@@ -147,6 +147,7 @@ class ClothSimulation {
   std::vector<Vec3> contact_normal_;    // per vertex, this step's contact plane:
   std::vector<double> contact_offset_;  // distance(p) ≈ offset + normal·p
   std::uint64_t projections_ = 0;
+  double plane_distance(int i) const { return contact_offset_[i] + contact_normal_[i].dot(p_[i]); }
   void collide_vertices();
   void collide_edges();
 };
