@@ -13,6 +13,11 @@ const std::vector<Verb>& verbs() {
       {"fmt", "fmt FILE.k [-o OUT.k] [--check]", "write a knitout file in canonical form", run_fmt},
       {"demo", "demo [-o DIR]", "run the built-in example end to end and say what to open",
        run_demo},
+      {"wearability",
+       "wearability DIR --wearer WEARER.obj [--trials K] [--runs R] [--seed N] [--threads T] "
+       "[--frames OUT/]",
+       "label each cut-arc sew or lace by stripping the garment off the wearer (§5)",
+       run_wearability},
   };
   return kVerbs;
 }
