@@ -274,9 +274,9 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
     }
     const planner::CoverMesh dressed = planner::dressed(*cover, field, params.cloth);
     const cloth::ClothMesh garment = planner::open_cuts(dressed, result.open());
-    cloth::ClothParams simulation = params.cloth;
-    simulation.threads = params.threads;
-    cloth::ClothSimulation sim(garment, field, simulation);
+    // One thread: a garment of a few thousand vertices gains little from
+    // splitting a step, and loses much when the cores are busy.
+    cloth::ClothSimulation sim(garment, field, params.cloth);
     int written = 0;
     auto write_frame = [&](int step, const cloth::ClothSimulation& state) {
       std::ostringstream name;
