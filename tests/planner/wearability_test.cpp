@@ -154,6 +154,39 @@ TEST(WearabilityTest, TrialRecordDoesNotDependOnThreads) {
   }
 }
 
+// --- the elimination and the lacing study ----------------------------------
+
+TEST(WearabilityTest, CapArcsAreAllSewnInEveryRun) {
+  // Slits from the rim of an open cap towards its pole: the cap comes off a
+  // sphere whether they are sewn or not, so every run sews every arc.
+  CoverMesh cap = sphere_mesh(1.0, 12, 4, std::numbers::pi / 2);
+  auto ring = [](int i, int j) { return 1 + (i - 1) * 12 + j; };
+  for (int j : {0, 4, 8})
+    cap.arcs.push_back(planner::arc_from_path({ring(4, j), ring(3, j), ring(2, j)}));
+  const auto study = planner::study_lacing(cap, sphere_field(), test_params(), 2);
+  ASSERT_EQ(study.runs.size(), 2u);
+  EXPECT_EQ(study.wearable_runs, 2);
+  EXPECT_EQ(study.lace_probability, std::vector<double>(3, 0.0));
+  EXPECT_EQ(planner::chosen_run(study), 0);
+  for (const auto& run : study.runs) {
+    ASSERT_EQ(run.order.size(), 3u);
+    for (const auto& arc : run.arcs) EXPECT_EQ(arc.label, planner::Label::Sew);
+  }
+}
+
+TEST(WearabilityTest, ShellWithAShortSlitIsRejectedAndNothingSewn) {
+  CoverMesh shell = sphere_mesh(1.0, 12, 6);
+  shell.arcs.push_back(planner::arc_from_path({0, 1, 13}, "slit"));
+  auto params = test_params();
+  params.cloth.max_steps = 600;
+  const auto study = planner::study_lacing(shell, sphere_field(), params, 1);
+  EXPECT_EQ(study.wearable_runs, 0);
+  EXPECT_EQ(planner::chosen_run(study), -1);
+  EXPECT_FALSE(study.runs[0].wearable());
+  EXPECT_TRUE(study.runs[0].order.empty()) << "no arc is tested after the first test fails";
+  EXPECT_EQ(study.runs[0].arcs[0].label, planner::Label::Lace);
+}
+
 // --- the elimination on a real shape ----------------------------------------
 
 // Arc along the torus-qd surface through points of a circle: the nearest
