@@ -226,7 +226,7 @@ TEST(WearabilityTest, TorusQdCoverSewsMeridianArcsAndLacesTheEquator) {
   cover.arcs.push_back(arc_through(cover, loop, "equator"));
   ASSERT_TRUE(planner::validate(cover).empty()) << planner::validate(cover).front();
   cloth::SdfParams sdf_params;
-  sdf_params.resolution = 64;
+  sdf_params.resolution = 48;
   const cloth::SignedDistanceField wearer(mesh->vertices, mesh->faces, sdf_params);
 
   auto params = test_params();
