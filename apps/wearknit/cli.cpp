@@ -23,6 +23,11 @@ const std::vector<Verb>& verbs() {
        "read a DAT back: size, position, passes, picture", run_dat_info},
       {"demo", "demo [-o DIR]", "run the built-in example end to end and say what to open",
        run_demo},
+      {"wearability",
+       "wearability DIR --wearer WEARER.obj [--trials K] [--runs R] [--seed N] [--threads T] "
+       "[--frames OUT/]",
+       "label each cut-arc sew or lace by stripping the garment off the wearer (§5)",
+       run_wearability},
   };
   return kVerbs;
 }

@@ -1,0 +1,304 @@
+// wearknit wearability: which cut-arcs of a cut folder are sewn and which are
+// laced (§5), by stripping the garment off the wearer in simulation.
+#include <cairo.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "apps/wearknit/cli.hpp"
+#include "knitout/output_file.hpp"
+#include "planner/wearability.hpp"
+#include "planner/wearability_io.hpp"
+
+namespace wearknit::cli {
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A 3/4 view of the garment with its arcs coloured: green sewn, red laced,
+// or — over several runs — from green to red by the probability of being
+// laced (Fig. 18). Faces are drawn back to front and shaded by a head light;
+// arcs are drawn over them, dashed where they face away from the viewer.
+void draw_layout(std::ostream& out, const planner::CoverMesh& mesh,
+                 const std::vector<double>& lace_share) {
+  constexpr int kSize = 900;
+  const double yaw = 0.6, pitch = 0.45;
+  const Eigen::Matrix3d view = (Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
+                                Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()))
+                                   .toRotationMatrix();
+  std::vector<Eigen::Vector3d> p;
+  Eigen::AlignedBox3d box;
+  for (const auto& v : mesh.vertices) {
+    p.push_back(view * v);
+    box.extend(p.back());
+  }
+  const double extent = std::max(box.sizes().x(), box.sizes().y());
+  const double scale = (kSize - 80) / std::max(extent, 1e-300);
+  auto screen_x = [&](const Eigen::Vector3d& q) { return 40 + (q.x() - box.min().x()) * scale; };
+  auto screen_y = [&](const Eigen::Vector3d& q) {
+    return kSize - 60 - (q.y() - box.min().y()) * scale;
+  };
+
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, kSize, kSize);
+  cairo_t* cr = cairo_create(surface);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  std::vector<std::pair<double, std::size_t>> order;
+  std::vector<double> facing(mesh.faces.size(), 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    double depth = 0;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      depth += p[face[i]].z();
+      normal += p[face[i]].cross(p[face[(i + 1) % face.size()]]);
+    }
+    facing[f] = normal.norm() > 0 ? normal.normalized().z() : 0;
+    order.push_back({depth / face.size(), f});
+  }
+  std::sort(order.begin(), order.end());  // far (negative z) first
+  cairo_set_line_width(cr, 0.5);
+  for (const auto& [depth, f] : order) {
+    const auto& face = mesh.faces[f];
+    cairo_move_to(cr, screen_x(p[face[0]]), screen_y(p[face[0]]));
+    for (std::size_t i = 1; i < face.size(); ++i)
+      cairo_line_to(cr, screen_x(p[face[i]]), screen_y(p[face[i]]));
+    cairo_close_path(cr);
+    const double shade = 0.55 + 0.4 * std::abs(facing[f]);
+    cairo_set_source_rgb(cr, shade, shade, shade * 1.02);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0.45, 0.45, 0.45);
+    cairo_stroke(cr);
+  }
+  // Which side a vertex faces: average of its faces' facing.
+  std::vector<double> vertex_facing(mesh.vertices.size(), 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (int v : mesh.faces[f]) vertex_facing[v] += facing[f];
+  }
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  for (std::size_t a = 0; a < mesh.arcs.size(); ++a) {
+    const double t = std::clamp(a < lace_share.size() ? lace_share[a] : 1.0, 0.0, 1.0);
+    for (const auto& [u, v] : mesh.arcs[a].edges) {
+      const bool front = vertex_facing[u] + vertex_facing[v] >= 0;
+      const double dash = 6;
+      cairo_set_dash(cr, front ? nullptr : &dash, front ? 0 : 1, 0);
+      cairo_set_line_width(cr, front ? 4 : 2);
+      cairo_set_source_rgb(cr, 0.15 + 0.7 * t, 0.6 * (1 - t) + 0.1, 0.2);
+      cairo_move_to(cr, screen_x(p[u]), screen_y(p[u]));
+      cairo_line_to(cr, screen_x(p[v]), screen_y(p[v]));
+      cairo_stroke(cr);
+    }
+  }
+  cairo_set_dash(cr, nullptr, 0, 0);
+  // Legend swatches, bottom left: sew, then lace. No text: cairo's text goes
+  // through fontconfig, whose caches the leak checker reports.
+  cairo_set_source_rgb(cr, 0.15, 0.7, 0.2);
+  cairo_rectangle(cr, 40, kSize - 36, 24, 16);
+  cairo_fill(cr);
+  cairo_set_source_rgb(cr, 0.85, 0.1, 0.2);
+  cairo_rectangle(cr, 72, kSize - 36, 24, 16);
+  cairo_fill(cr);
+  cairo_surface_flush(surface);
+  cairo_surface_write_to_png_stream(
+      surface,
+      [](void* closure, const unsigned char* data, unsigned int length) {
+        static_cast<std::ostream*>(closure)->write(reinterpret_cast<const char*>(data), length);
+        return CAIRO_STATUS_SUCCESS;
+      },
+      &out);
+  cairo_destroy(cr);
+  cairo_surface_destroy(surface);
+}
+
+// The seed of a successful trial of the final configuration: the last sewn
+// arc's test (the configuration did not change after it), else the test
+// with every cut open.
+std::uint64_t final_seed(const planner::EliminationResult& result) {
+  const planner::TestResult* last = &result.initial;
+  int position = -1;
+  for (const auto& arc : result.arcs) {
+    if (arc.label == planner::Label::Sew && arc.position > position) {
+      position = arc.position;
+      last = &arc.test;
+    }
+  }
+  return last->trials.empty() ? 0 : last->trials.back().seed;
+}
+
+}  // namespace
+
+int run_wearability(const std::vector<std::string>& args, Context& context) {
+  std::string dir, wearer_path, frames_dir;
+  planner::WearabilityParams params;
+  int runs = 1, frame_every = 10, resolution = cloth::SdfParams{}.resolution;
+  std::uint64_t seed = 1;
+  po::options_description options("options");
+  options.add_options()("dir", po::value<std::string>(&dir)->required(),
+                        "cut folder (cut-mesh.obj + cuts.json, as `wearknit cut` writes)")(
+      "wearer", po::value<std::string>(&wearer_path)->required(), "the rigid object (OBJ)")(
+      "trials", po::value<int>(&params.trials)->default_value(params.trials),
+      "K: trials per test, each with its own global-force directions")(
+      "runs", po::value<int>(&runs)->default_value(1),
+      "R: eliminations with different arc orders (probability of lacing, Fig. 18)")(
+      "seed", po::value<std::uint64_t>(&seed)->default_value(1), "random seed")(
+      "threads", po::value<int>(&params.threads)->default_value(0),
+      "threads running trials (0 = all cores)")(
+      "max-steps", po::value<int>(&params.cloth.max_steps)->default_value(params.cloth.max_steps),
+      "steps before a trial counts as failed")(
+      "resolution", po::value<int>(&resolution)->default_value(resolution),
+      "distance-field cells along the wearer's longest side")(
+      "frames", po::value<std::string>(&frames_dir),
+      "write the strip-off of the final configuration as OBJ files into this folder")(
+      "frame-every", po::value<int>(&frame_every)->default_value(10), "steps between frames")(
+      "quiet,q", "no progress display");
+  po::positional_options_description positional;
+  positional.add("dir", 1);
+  po::variables_map values;
+  if (auto code =
+          parse_options(args, *find_verb("wearability"), options, positional, values, context)) {
+    return *code;
+  }
+  params.seed = seed;
+  if (params.trials < 1 || runs < 1 || params.cloth.max_steps < 1 || resolution < 8 ||
+      frame_every < 1) {
+    context.err << "wearknit wearability: --trials, --runs, --max-steps and --frame-every must be "
+                   "positive, --resolution at least 8\n";
+    return kExitUsage;
+  }
+  const bool show_progress = context.out_is_terminal && values.count("quiet") == 0;
+
+  knitout::DiagnosticSink sink;
+  const std::string mesh_path = (fs::path(dir) / "cut-mesh.obj").string();
+  const std::string cuts_path = (fs::path(dir) / "cuts.json").string();
+  const auto cut_mesh = planner::read_obj_file(mesh_path, sink);
+  const auto wearer = planner::read_obj_file(wearer_path, sink);
+  nlohmann::json cuts;
+  {
+    std::ifstream in(cuts_path);
+    if (!in) {
+      sink.error(cuts_path, 0, 0, "W004", "cannot open file");
+    } else {
+      try {
+        cuts = nlohmann::json::parse(in);
+      } catch (const nlohmann::json::parse_error& e) {
+        sink.error(cuts_path, 0, 0, "W010", std::string("not JSON: ") + e.what());
+      }
+    }
+  }
+  std::optional<planner::CoverMesh> cover;
+  if (cut_mesh && !sink.has_errors())
+    cover = planner::read_cover_mesh(*cut_mesh, cuts, cuts_path, sink);
+  print_diagnostics(context, sink.diagnostics(), DiagnosticFormat::Text);
+  if (sink.has_errors()) {
+    const bool missing = std::any_of(sink.diagnostics().begin(), sink.diagnostics().end(),
+                                     [](const auto& d) { return d.code == "W004"; });
+    return missing ? kExitUsage : kExitInvalid;
+  }
+
+  if (show_progress) context.out << "building the wearer's distance field..." << std::flush;
+  cloth::SdfParams sdf_params;
+  sdf_params.resolution = resolution;
+  sdf_params.threads = params.threads;
+  const cloth::SignedDistanceField field(wearer->vertices, wearer->faces, sdf_params);
+  if (show_progress) context.out << "\r\033[K";
+
+  const auto progress = [&](const planner::Progress& p) {
+    if (!show_progress) return;
+    context.out << "\rrun " << p.run + 1 << '/' << p.runs << "  arcs tested " << p.tested << '/'
+                << p.arcs << "  sewn " << p.sewn << "\033[K" << std::flush;
+  };
+  const planner::LacingStudy study = planner::study_lacing(*cover, field, params, runs, progress);
+  if (show_progress) context.out << "\r\033[K";
+
+  planner::annotate_cuts(cuts, study, params);
+  const int chosen = planner::chosen_run(study);
+  std::vector<double> lace_share(cover->arcs.size(), 1.0);
+  if (chosen >= 0) {
+    if (runs > 1) {
+      lace_share = study.lace_probability;
+    } else {
+      const auto open = study.runs[chosen].open();
+      for (std::size_t a = 0; a < open.size(); ++a) lace_share[a] = open[a] ? 1.0 : 0.0;
+    }
+  }
+  std::string failure = knitout::write_file_atomically(
+      cuts_path, [&](std::ostream& out) { out << cuts.dump(2) << '\n'; });
+  const std::string picture_path = (fs::path(dir) / "wearability.png").string();
+  if (failure.empty()) {
+    failure = knitout::write_file_atomically(
+        picture_path, [&](std::ostream& out) { draw_layout(out, *cover, lace_share); });
+  }
+  if (!failure.empty()) {
+    context.err << "wearknit wearability: " << failure << '\n';
+    return kExitUsage;
+  }
+
+  if (chosen < 0) {
+    context.err << cuts_path << ": error: [W020] the garment with every cut open did not come off "
+                << "the wearer in " << params.trials << " trials of " << params.cloth.max_steps
+                << " steps; cut it again with another seed (every arc is labelled lace)\n";
+    return kExitInvalid;
+  }
+  const auto& result = study.runs[chosen];
+  int sewn = 0;
+  for (const auto& arc : result.arcs) sewn += arc.label == planner::Label::Sew;
+  double seconds = 0;
+  std::uint64_t steps = 0;
+  for (const auto& run : study.runs) {
+    seconds += run.seconds;
+    steps += run.steps;
+  }
+  context.out << "wearability: " << cover->arcs.size() << " arcs, " << sewn << " sew, "
+              << cover->arcs.size() - sewn << " lace";
+  if (runs > 1) context.out << " (run " << chosen + 1 << " of " << runs << ", most sewn)";
+  context.out << "; " << steps << " steps in " << std::fixed << std::setprecision(1) << seconds
+              << " s\n"
+              << "wrote " << cuts_path << " and " << picture_path << '\n';
+
+  if (!frames_dir.empty()) {
+    std::error_code error;
+    fs::create_directories(frames_dir, error);
+    if (error) {
+      context.err << frames_dir << ": error: cannot create folder: " << error.message() << '\n';
+      return kExitUsage;
+    }
+    const planner::CoverMesh dressed = planner::dressed(*cover, field, params.cloth);
+    const cloth::ClothMesh garment = planner::open_cuts(dressed, result.open());
+    // One thread: a garment of a few thousand vertices gains little from
+    // splitting a step, and loses much when the cores are busy.
+    cloth::ClothSimulation sim(garment, field, params.cloth);
+    int written = 0;
+    auto write_frame = [&](int step, const cloth::ClothSimulation& state) {
+      std::ostringstream name;
+      name << "frame-" << std::setw(5) << std::setfill('0') << step << ".obj";
+      failure = knitout::write_file_atomically(
+          (fs::path(frames_dir) / name.str()).string(), [&](std::ostream& out) {
+            planner::write_obj(out, state.positions(), state.mesh().faces);
+          });
+      ++written;
+      return failure.empty();
+    };
+    write_frame(0, sim);
+    const auto outcome =
+        sim.run(final_seed(result), [&](int step, const cloth::ClothSimulation& s) {
+          return step % frame_every != 0 || write_frame(step, s);
+        });
+    if (!failure.empty()) {
+      context.err << "wearknit wearability: " << failure << '\n';
+      return kExitUsage;
+    }
+    context.out << "wrote " << written << " frames to " << frames_dir << " ("
+                << (outcome.success ? "garment off" : "garment still on") << " after "
+                << outcome.steps << " steps)\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace wearknit::cli

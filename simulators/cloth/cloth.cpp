@@ -1,0 +1,313 @@
+#include "simulators/cloth/cloth.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "simulators/cloth/parallel.hpp"
+
+namespace cloth {
+
+namespace {
+
+std::uint64_t pair_key(int a, int b) {
+  const auto lo = static_cast<std::uint32_t>(std::min(a, b));
+  const auto hi = static_cast<std::uint32_t>(std::max(a, b));
+  return (static_cast<std::uint64_t>(lo) << 32) | hi;
+}
+
+std::uint64_t directed_key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+// Greedy colouring of vertex pairs: no two pairs of one colour share a
+// vertex, so a colour class can be projected in parallel, in any order, with
+// the same result. Returns the items reordered by colour and the class starts.
+void colour_pairs(std::size_t vertex_count, const std::vector<std::array<int, 2>>& pairs,
+                  std::vector<int>& order, std::vector<int>& begin) {
+  std::vector<std::vector<bool>> used(vertex_count);
+  std::vector<int> colour(pairs.size());
+  int colours = 0;
+  for (std::size_t s = 0; s < pairs.size(); ++s) {
+    auto& ua = used[pairs[s][0]];
+    auto& ub = used[pairs[s][1]];
+    int c = 0;
+    while ((c < static_cast<int>(ua.size()) && ua[c]) ||
+           (c < static_cast<int>(ub.size()) && ub[c])) {
+      ++c;
+    }
+    if (static_cast<int>(ua.size()) <= c) ua.resize(c + 1, false);
+    if (static_cast<int>(ub.size()) <= c) ub.resize(c + 1, false);
+    ua[c] = ub[c] = true;
+    colour[s] = c;
+    colours = std::max(colours, c + 1);
+  }
+  begin.assign(colours + 1, 0);
+  for (int c : colour) ++begin[c + 1];
+  for (int c = 0; c < colours; ++c) begin[c + 1] += begin[c];
+  order.assign(pairs.size(), 0);
+  std::vector<int> next(begin.begin(), begin.end() - 1);
+  for (std::size_t s = 0; s < pairs.size(); ++s) order[next[colour[s]]++] = static_cast<int>(s);
+}
+
+}  // namespace
+
+std::vector<Spring> build_springs(const ClothMesh& mesh) {
+  const int n = static_cast<int>(mesh.positions.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (mesh.faces[f].size() < 3) {
+      throw std::invalid_argument("garment face " + std::to_string(f) +
+                                  " has fewer than 3 vertices");
+    }
+    for (int v : mesh.faces[f]) {
+      if (v < 0 || v >= n) {
+        throw std::invalid_argument("garment face " + std::to_string(f) + " refers to vertex " +
+                                    std::to_string(v) + " of " + std::to_string(n));
+      }
+    }
+  }
+  std::vector<Spring> springs;
+  std::unordered_map<std::uint64_t, std::size_t> seen;
+  auto add = [&](int a, int b, SpringKind kind) {
+    if (a == b) return;
+    const auto [it, inserted] = seen.emplace(pair_key(a, b), springs.size());
+    if (!inserted) return;  // kinds are added strongest first
+    springs.push_back({a, b, (mesh.positions[a] - mesh.positions[b]).norm(), kind});
+  };
+  for (const auto& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i)
+      add(face[i], face[(i + 1) % face.size()], SpringKind::Stretch);
+  }
+  for (const auto& face : mesh.faces) {
+    if (face.size() != 4) continue;
+    add(face[0], face[2], SpringKind::Shear);
+    add(face[1], face[3], SpringKind::Shear);
+  }
+  // Bend: a quad a→b→c… and the quad across its edge (b, c) (which holds the
+  // half-edge c→b followed by b→x): a, b, x lie on one wale or course line
+  // through b, and a–x joins every other vertex along it.
+  std::unordered_map<std::uint64_t, std::array<int, 2>> half_edges;  // (from,to) → (face, corner)
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      half_edges[directed_key(face[i], face[(i + 1) % face.size()])] = {static_cast<int>(f),
+                                                                        static_cast<int>(i)};
+    }
+  }
+  for (const auto& face : mesh.faces) {
+    if (face.size() != 4) continue;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const int a = face[i], b = face[(i + 1) % 4], c = face[(i + 2) % 4];
+      const auto across = half_edges.find(directed_key(c, b));
+      if (across == half_edges.end()) continue;
+      const auto& other = mesh.faces[across->second[0]];
+      if (other.size() != 4) continue;
+      const int x = other[(across->second[1] + 2) % 4];  // c→b→x
+      add(a, x, SpringKind::Bend);
+    }
+  }
+  return springs;
+}
+
+Vec3 axis_direction(int axis) {
+  Vec3 d = Vec3::Zero();
+  d[axis / 2] = (axis % 2 == 0) ? 1.0 : -1.0;
+  return d;
+}
+
+std::vector<int> global_directions(std::uint64_t seed, int count) {
+  // mt19937_64's output sequence is fixed by the standard; the mapping to
+  // axes uses plain modulo so no library's distribution can change it.
+  std::mt19937_64 random(seed);
+  std::vector<int> axes;
+  int previous = -1;
+  for (int i = 0; i < count; ++i) {
+    int axis = static_cast<int>(random() % 6);
+    if (axis == previous) axis = (axis + 1 + static_cast<int>(random() % 5)) % 6;
+    axes.push_back(axis);
+    previous = axis;
+  }
+  return axes;
+}
+
+ClothSimulation::ClothSimulation(const ClothMesh& garment, const SignedDistanceField& wearer,
+                                 const ClothParams& params)
+    : mesh_(garment), wearer_(wearer), params_(params), scale_(wearer.scale()) {
+  if (params_.iterations < 1) throw std::invalid_argument("iterations must be at least 1");
+  if (params_.time_step_s <= 0) throw std::invalid_argument("time step must be positive");
+  auto springs = build_springs(mesh_);
+  std::vector<std::array<int, 2>> pairs;
+  for (const auto& s : springs) pairs.push_back({s.a, s.b});
+  std::vector<int> order;
+  colour_pairs(mesh_.positions.size(), pairs, order, colour_begin_);
+  springs_.reserve(springs.size());
+  for (int s : order) springs_.push_back(springs[s]);
+
+  pairs.clear();
+  std::vector<int> stretch;
+  for (std::size_t s = 0; s < springs_.size(); ++s) {
+    if (springs_[s].kind == SpringKind::Stretch) {
+      stretch.push_back(static_cast<int>(s));
+      pairs.push_back({springs_[s].a, springs_[s].b});
+    }
+  }
+  colour_pairs(mesh_.positions.size(), pairs, order, edge_colour_begin_);
+  for (int s : order) edge_springs_.push_back(stretch[s]);
+
+  const double iterations = params_.iterations;
+  auto per_iteration = [&](double k) {
+    return 1.0 - std::pow(1.0 - std::clamp(k, 0.0, 1.0), 1.0 / iterations);
+  };
+  stiffness_ = {per_iteration(params_.stretch_stiffness), per_iteration(params_.shear_stiffness),
+                per_iteration(params_.bend_stiffness)};
+  x_ = mesh_.positions;
+  v_.assign(x_.size(), Vec3::Zero());
+  p_ = x_;
+  contact_normal_.assign(x_.size(), Vec3::Zero());
+  contact_offset_.assign(x_.size(), 0.0);
+}
+
+void ClothSimulation::collide_vertices() {
+  const double clearance = params_.clearance * scale_;
+  parallel_for(static_cast<int>(p_.size()), params_.threads, [&](int i) {
+    // Far from the wearer by the contact plane: no lookup needed.
+    if (plane_distance(i) > 2 * clearance) return;
+    Vec3 normal;
+    const double d = wearer_.value_and_gradient(p_[i], normal);
+    if (d < clearance) p_[i] += (clearance - d) * normal;
+  });
+  projections_ += p_.size();
+}
+
+void ClothSimulation::collide_edges() {
+  // Vertices alone would let a stretched edge cut through a thin part of the
+  // wearer (a ring of cloth slipping off a torus between two vertices), so
+  // edge midpoints collide too, moving both ends.
+  const double clearance = params_.clearance * scale_;
+  for (std::size_t c = 0; c + 1 < edge_colour_begin_.size(); ++c) {
+    const int begin = edge_colour_begin_[c];
+    parallel_for(edge_colour_begin_[c + 1] - begin, params_.threads, [&](int i) {
+      const Spring& s = springs_[edge_springs_[begin + i]];
+      // The interpolated field changes by at most √3 per unit length, so a
+      // midpoint whose ends are far enough cannot touch: skip the lookup.
+      const double half = 0.5 * (p_[s.a] - p_[s.b]).norm();
+      if (std::min(plane_distance(s.a), plane_distance(s.b)) > clearance + 1.75 * half) return;
+      const Vec3 mid = 0.5 * (p_[s.a] + p_[s.b]);
+      Vec3 normal;
+      const double d = wearer_.value_and_gradient(mid, normal);
+      if (d < clearance) {
+        const Vec3 push = (clearance - d) * normal;
+        p_[s.a] += push;
+        p_[s.b] += push;
+      }
+    });
+  }
+  projections_ += edge_springs_.size();
+}
+
+void ClothSimulation::step(int global_axis) {
+  const double dt = params_.time_step_s;
+  const double clearance = params_.clearance * scale_;
+  const double max_move = params_.max_step_clearances * clearance;
+  const double damping = 1.0 - std::clamp(params_.damping, 0.0, 1.0);
+  const Vec3 global = axis_direction(global_axis) * (params_.global_acceleration * scale_);
+  const double local = params_.local_acceleration * scale_;
+  parallel_for(static_cast<int>(x_.size()), params_.threads, [&](int i) {
+    Vec3 normal;
+    const double distance = wearer_.value_and_gradient(x_[i], normal);
+    // The field near x, linearised: the contact plane of this step. A vertex
+    // moves at most max_move per step, so the plane stays accurate, and the
+    // iterations below need no further field lookups.
+    contact_normal_[i] = normal;
+    contact_offset_[i] = distance - normal.dot(x_[i]);
+    // §5: local force along the distance gradient, magnitude ∝ 1/d².
+    const double d = std::max(distance, 0.5 * clearance);
+    const double ratio = clearance / d;
+    const Vec3 acceleration = global + normal * (local * ratio * ratio);
+    Vec3 velocity = damping * v_[i] + dt * acceleration;
+    const double move = velocity.norm() * dt;
+    if (move > max_move) velocity *= max_move / move;
+    v_[i] = velocity;
+    p_[i] = x_[i] + dt * velocity;
+  });
+  for (int iteration = 0; iteration < params_.iterations; ++iteration) {
+    for (std::size_t c = 0; c + 1 < colour_begin_.size(); ++c) {
+      const int begin = colour_begin_[c];
+      parallel_for(colour_begin_[c + 1] - begin, params_.threads, [&](int i) {
+        const Spring& s = springs_[begin + i];
+        const Vec3 d = p_[s.b] - p_[s.a];
+        const double length = d.norm();
+        if (length <= 1e-300) return;
+        const double k = stiffness_[static_cast<int>(s.kind)];
+        const Vec3 correction = (0.5 * k * (length - s.rest_length) / length) * d;
+        p_[s.a] += correction;
+        p_[s.b] -= correction;
+      });
+    }
+    projections_ += springs_.size();
+    parallel_for(static_cast<int>(p_.size()), params_.threads, [&](int i) {
+      const double d = contact_offset_[i] + contact_normal_[i].dot(p_[i]);
+      if (d < clearance) p_[i] += (clearance - d) * contact_normal_[i];
+    });
+    projections_ += p_.size();
+  }
+  // Exact collision at the end of the step: edge midpoints, then vertices
+  // against the field itself, so no vertex ends a step inside the wearer.
+  collide_edges();
+  collide_vertices();
+  parallel_for(static_cast<int>(x_.size()), params_.threads, [&](int i) {
+    Vec3 velocity = (p_[i] - x_[i]) / dt;
+    const double move = velocity.norm() * dt;
+    if (move > max_move) velocity *= max_move / move;
+    v_[i] = velocity;
+    x_[i] = p_[i];
+  });
+}
+
+double ClothSimulation::min_distance() const {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Vec3& x : x_) best = std::min(best, wearer_.value(x));
+  return best;
+}
+
+StripResult ClothSimulation::run(
+    std::uint64_t seed, const std::function<bool(int step, const ClothSimulation&)>& observer) {
+  const int switch_steps = std::max(params_.switch_steps, 1);
+  const auto axes = global_directions(seed, params_.max_steps / switch_steps + 1);
+  const double goal = params_.success_distance * scale_;
+  const int check_every = std::max(params_.check_every, 1);
+  StripResult result;
+  for (int s = 0; s < params_.max_steps; ++s) {
+    step(axes[s / switch_steps]);
+    result.steps = s + 1;
+    if (observer && !observer(s + 1, *this)) break;
+    if ((s + 1) % check_every == 0 && min_distance() >= goal) {
+      result.success = true;
+      break;
+    }
+  }
+  result.min_distance = min_distance();
+  result.projections = projections_;
+  return result;
+}
+
+void dress(ClothMesh& mesh, const SignedDistanceField& wearer, double clearance) {
+  const double target = clearance * wearer.scale();
+  for (Vec3& x : mesh.positions) {
+    // The gradient of an interpolated field is only approximately the
+    // direction to the surface, so a few steps are taken.
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      Vec3 normal;
+      const double d = wearer.value_and_gradient(x, normal);
+      if (d >= target) break;
+      x += (target - d + 1e-6 * wearer.scale()) * normal;
+    }
+  }
+}
+
+}  // namespace cloth

@@ -1,0 +1,107 @@
+// The wearer as a signed distance field (§5, §8.2).
+//
+// Built once from a closed triangle (or polygon) mesh: every node of a
+// regular grid that covers the mesh's bounding box (plus a margin) stores the
+// exact distance to the surface (closest point on the nearest triangle, found
+// through a bounding-volume hierarchy) with a sign from the generalised
+// winding number (negative inside, where the winding number exceeds 1/2).
+// The winding number makes the sign robust to small holes, slivers and
+// inconsistent orientation, which ray parity is not. Queries interpolate the
+// grid trilinearly and return the analytic gradient of that interpolant.
+// Outside the grid the field continues as the distance to the grid box plus
+// the value at the nearest box point, so far-away queries stay meaningful.
+//
+// Units are those of the mesh. The class is immutable after construction and
+// safe to query from many threads at once.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace cloth {
+
+using Vec3 = Eigen::Vector3d;
+
+struct SdfParams {
+  // Grid cells along the longest side of the padded box. 96 keeps the cell
+  // below 1/60 of the wearer's size (about one collision clearance), which is
+  // what vertex collision needs; build time grows with the cube of it.
+  int resolution = 96;
+  // Margin around the mesh's bounding box, as a fraction of its diagonal.
+  double margin_fraction = 0.2;
+  // Threads for building the grid (0 = all hardware threads).
+  int threads = 0;
+};
+
+// Exact queries on a triangle mesh: closest distance through a BVH and the
+// fast (Barnes–Hut-style, dipole-approximated far field) generalised winding
+// number.
+class TriangleMeshQuery {
+ public:
+  TriangleMeshQuery(std::vector<Vec3> vertices, std::vector<std::array<int, 3>> triangles);
+  ~TriangleMeshQuery();
+  TriangleMeshQuery(TriangleMeshQuery&&) noexcept;
+  TriangleMeshQuery& operator=(TriangleMeshQuery&&) noexcept;
+
+  // Unsigned distance from `p` to the surface.
+  double distance(const Vec3& p) const;
+  // Generalised winding number of the surface around `p` (1 inside a closed,
+  // outward-oriented surface, 0 outside).
+  double winding_number(const Vec3& p) const;
+  // distance(p), negated when winding_number(p) > 0.5.
+  double signed_distance(const Vec3& p) const;
+
+  const std::vector<Vec3>& vertices() const { return vertices_; }
+  const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
+
+ private:
+  struct Node;
+  std::vector<Vec3> vertices_;
+  std::vector<std::array<int, 3>> triangles_;
+  std::vector<Node> nodes_;
+  std::vector<int> order_;  // triangle indices in leaf order
+  int build(int begin, int end);
+};
+
+class SignedDistanceField {
+ public:
+  // `faces` may be polygons; they are triangulated as fans. Throws
+  // std::invalid_argument on an empty mesh or an out-of-range index.
+  SignedDistanceField(const std::vector<Vec3>& vertices, const std::vector<std::vector<int>>& faces,
+                      const SdfParams& params = {});
+
+  // Interpolated signed distance at `p`.
+  double value(const Vec3& p) const;
+  // Interpolated signed distance at `p`; `gradient` receives the unit
+  // direction of increasing distance (the interpolant's gradient,
+  // normalised; +x when it vanishes).
+  double value_and_gradient(const Vec3& p, Vec3& gradient) const;
+
+  // The exact mesh queries the grid was built from.
+  const TriangleMeshQuery& mesh() const { return *mesh_; }
+  const Vec3& box_min() const { return origin_; }
+  Vec3 box_max() const;
+  double cell_size() const { return cell_; }
+  std::array<int, 3> nodes() const { return {nx_, ny_, nz_}; }
+  // Diagonal of the wearer's (unpadded) bounding box: the length unit of
+  // every relative simulation parameter.
+  double scale() const { return scale_; }
+
+ private:
+  std::shared_ptr<const TriangleMeshQuery> mesh_;
+  Vec3 origin_;
+  double cell_ = 1.0;
+  int nx_ = 0, ny_ = 0, nz_ = 0;
+  double scale_ = 1.0;
+  std::vector<float> values_;
+  double node(int i, int j, int k) const {
+    return values_[(static_cast<std::size_t>(k) * ny_ + j) * nx_ + i];
+  }
+  double inside_value_and_gradient(const Vec3& p, Vec3* gradient) const;
+  double evaluate(const Vec3& p, Vec3* gradient) const;
+};
+
+}  // namespace cloth

@@ -1,0 +1,316 @@
+#include "planner/wearability.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "planner/wearability_io.hpp"
+#include "tests/planner/cover_shapes.hpp"
+#include "tests/test_support.hpp"
+
+namespace wearknit::test {
+namespace {
+
+// Test budget: every trial stops after 1500 steps (5 global-force switches)
+// instead of the default 3000, and 2 trials instead of 4, so a failing test
+// costs 3000 steps of a coarse garment. The answers below hold with margin
+// at this budget (a stripped garment leaves within ~1000 steps; a trapped
+// one never gets near the success distance).
+planner::WearabilityParams test_params() {
+  planner::WearabilityParams params;
+  params.cloth.max_steps = 1500;
+  params.trials = 2;
+  params.threads = 2;
+  params.seed = 5;
+  return params;
+}
+
+cloth::SignedDistanceField field_of(const CoverMesh& mesh, int resolution = 32) {
+  cloth::SdfParams params;
+  params.resolution = resolution;
+  return cloth::SignedDistanceField(mesh.vertices, mesh.faces, params);
+}
+
+const cloth::SignedDistanceField& sphere_field() {
+  static const auto field = field_of(sphere_mesh(1.0, 32, 16));
+  return field;
+}
+
+const cloth::SignedDistanceField& torus_field() {
+  static const auto field = field_of(torus_mesh(1.0, 0.4, 48, 24));
+  return field;
+}
+
+planner::TestResult test_open(const CoverMesh& garment, const std::vector<bool>& open,
+                              const cloth::SignedDistanceField& wearer,
+                              const planner::WearabilityParams& params, std::uint64_t seed) {
+  const CoverMesh dressed = planner::dressed(garment, wearer, params.cloth);
+  return planner::test_wearability(dressed, open, wearer, params, seed);
+}
+
+// --- building the garment ---------------------------------------------------
+
+TEST(WearabilityTest, OpenCutsSplitsAlongOpenArcsOnly) {
+  const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  ASSERT_TRUE(planner::validate(cover).empty());
+  // Closed: the torus itself.
+  EXPECT_EQ(planner::open_cuts(cover, {false, false, false, false, false}).positions.size(), 288u);
+  // Disc: the 24×12 grid becomes a 25×13 rectangle of vertices.
+  std::vector<int> source;
+  const auto disc = planner::open_cuts(cover, {true, true, true, true, true}, &source);
+  EXPECT_EQ(disc.positions.size(), 325u);
+  ASSERT_EQ(source.size(), 325u);
+  for (std::size_t v = 0; v < source.size(); ++v) {
+    EXPECT_EQ(disc.positions[v], cover.vertices[source[v]]);
+  }
+  // Only the meridian open: a tube along the big circle, 24 + 1 rings of 12.
+  EXPECT_EQ(planner::open_cuts(cover, {true, false, false, false, false}).positions.size(), 300u);
+}
+
+TEST(WearabilityTest, ValidateNamesTheBadElement) {
+  CoverMesh cover = torus_cover(1.0, 0.4, 8, 4, 2);
+  cover.arcs.push_back(planner::arc_from_path({0, 9}, "diagonal"));  // not an edge
+  cover.arcs.push_back(planner::arc_from_path({0, 1}));              // also in arc 0
+  cover.faces.push_back({0, 1});
+  const auto problems = planner::validate(cover);
+  ASSERT_EQ(problems.size(), 3u);
+  EXPECT_EQ(problems[0], "face 32 has fewer than 3 vertices");
+  EXPECT_EQ(problems[1], "arc 3 edge 0 (0-9) is not an edge of the mesh");
+  EXPECT_EQ(problems[2], "arc 4 edge 0 (0-1) is also in arc 0");
+  planner::WearabilityParams params = test_params();
+  EXPECT_THROW(planner::eliminate(cover, sphere_field(), params), std::invalid_argument);
+}
+
+TEST(WearabilityTest, WeldingASplitMeshRecoversTheCover) {
+  const CoverMesh cover = torus_cover(1.0, 0.4, 12, 6, 2);
+  const auto disc = planner::open_cuts(cover, {true, true, true});
+  std::vector<Vec3> vertices = disc.positions;
+  std::vector<std::vector<int>> faces = disc.faces;
+  const auto map = planner::weld_vertices(vertices, faces, 1e-9);
+  EXPECT_EQ(vertices.size(), cover.vertices.size());
+  EXPECT_EQ(map.size(), disc.positions.size());
+}
+
+// --- known physical answers (§5) --------------------------------------------
+
+TEST(WearabilityTest, OpenHemisphericalCapOverASphereIsWearable) {
+  const CoverMesh cap = sphere_mesh(1.0, 16, 5, std::numbers::pi / 2);
+  const auto result = test_open(cap, {}, sphere_field(), test_params(), 1);
+  EXPECT_TRUE(result.wearable);
+  ASSERT_FALSE(result.trials.empty());
+  EXPECT_TRUE(result.trials.back().success);
+  EXPECT_GE(result.trials.back().min_distance, test_params().cloth.success_distance);
+}
+
+TEST(WearabilityTest, ClosedShellAroundASphereIsNotWearable) {
+  const CoverMesh shell = sphere_mesh(1.0, 12, 6);
+  const auto params = test_params();
+  const auto result = test_open(shell, {}, sphere_field(), params, 1);
+  EXPECT_FALSE(result.wearable);
+  ASSERT_EQ(result.trials.size(), 2u);
+  for (const auto& trial : result.trials) {
+    EXPECT_FALSE(trial.success);
+    EXPECT_EQ(trial.steps, params.cloth.max_steps);
+    EXPECT_LT(trial.min_distance, params.cloth.success_distance);
+  }
+}
+
+TEST(WearabilityTest, TorusCoverCutIntoADiscIsWearable) {
+  const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  const auto result =
+      test_open(cover, {true, true, true, true, true}, torus_field(), test_params(), 1);
+  EXPECT_TRUE(result.wearable);
+}
+
+TEST(WearabilityTest, TorusCoverWithAMeridianRingKeptIsNotWearable) {
+  // Equator arc 1 sewn: the faces along it close into a band around the
+  // tube, linked with the torus; no deformation without tearing removes it.
+  const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  const auto result =
+      test_open(cover, {true, false, true, true, true}, torus_field(), test_params(), 1);
+  EXPECT_FALSE(result.wearable);
+  EXPECT_EQ(result.trials.size(), 2u);
+}
+
+TEST(WearabilityTest, TrialRecordDoesNotDependOnThreads) {
+  const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  auto params = test_params();
+  params.trials = 3;
+  params.threads = 1;
+  const auto one = test_open(cover, {true, true, true, true, true}, torus_field(), params, 3);
+  params.threads = 3;
+  const auto three = test_open(cover, {true, true, true, true, true}, torus_field(), params, 3);
+  EXPECT_EQ(one.wearable, three.wearable);
+  ASSERT_EQ(one.trials.size(), three.trials.size());
+  for (std::size_t t = 0; t < one.trials.size(); ++t) {
+    EXPECT_EQ(one.trials[t].seed, three.trials[t].seed);
+    EXPECT_EQ(one.trials[t].success, three.trials[t].success);
+    EXPECT_EQ(one.trials[t].steps, three.trials[t].steps);
+    EXPECT_EQ(one.trials[t].min_distance, three.trials[t].min_distance);
+  }
+}
+
+// --- the elimination and the lacing study ----------------------------------
+
+TEST(WearabilityTest, CapArcsAreAllSewnInEveryRun) {
+  // Slits from the rim of an open cap towards its pole: the cap comes off a
+  // sphere whether they are sewn or not, so every run sews every arc.
+  CoverMesh cap = sphere_mesh(1.0, 12, 4, std::numbers::pi / 2);
+  auto ring = [](int i, int j) { return 1 + (i - 1) * 12 + j; };
+  for (int j : {0, 4, 8})
+    cap.arcs.push_back(planner::arc_from_path({ring(4, j), ring(3, j), ring(2, j)}));
+  const auto study = planner::study_lacing(cap, sphere_field(), test_params(), 2);
+  ASSERT_EQ(study.runs.size(), 2u);
+  EXPECT_EQ(study.wearable_runs, 2);
+  EXPECT_EQ(study.lace_probability, std::vector<double>(3, 0.0));
+  EXPECT_EQ(planner::chosen_run(study), 0);
+  for (const auto& run : study.runs) {
+    ASSERT_EQ(run.order.size(), 3u);
+    for (const auto& arc : run.arcs) EXPECT_EQ(arc.label, planner::Label::Sew);
+  }
+}
+
+TEST(WearabilityTest, ShellWithAShortSlitIsRejectedAndNothingSewn) {
+  CoverMesh shell = sphere_mesh(1.0, 12, 6);
+  shell.arcs.push_back(planner::arc_from_path({0, 1, 13}, "slit"));
+  auto params = test_params();
+  params.cloth.max_steps = 600;
+  const auto study = planner::study_lacing(shell, sphere_field(), params, 1);
+  EXPECT_EQ(study.wearable_runs, 0);
+  EXPECT_EQ(planner::chosen_run(study), -1);
+  EXPECT_FALSE(study.runs[0].wearable());
+  EXPECT_TRUE(study.runs[0].order.empty()) << "no arc is tested after the first test fails";
+  EXPECT_EQ(study.runs[0].arcs[0].label, planner::Label::Lace);
+}
+
+// --- the elimination on a real shape ----------------------------------------
+
+// Arc along the torus-qd surface through points of a circle: the nearest
+// vertices of `count` + 1 points, joined by shortest edge paths.
+planner::CutArc arc_through(const CoverMesh& mesh, const std::vector<Vec3>& points,
+                            const std::string& name) {
+  std::vector<int> path;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    auto piece = planner::shortest_edge_path(mesh, planner::nearest_vertex(mesh, points[i]),
+                                             planner::nearest_vertex(mesh, points[i + 1]));
+    if (!path.empty()) piece.erase(piece.begin());
+    path.insert(path.end(), piece.begin(), piece.end());
+  }
+  return planner::arc_from_path(path, name);
+}
+
+TEST(WearabilityTest, TorusQdCoverSewsMeridianArcsAndLacesTheEquator) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  knitout::DiagnosticSink sink;
+  const auto mesh = planner::read_obj_file((shared / "meshes" / "torus-qd.obj").string(), sink);
+  ASSERT_TRUE(mesh) << sink.diagnostics().front().message;
+  // torus-qd: axis z, tube centre radius 1, tube radius 0.25 (its bounding
+  // box). The wearer is the mesh itself; the garment is its surface, cut by
+  // the meridian loop at longitude 0, split into 2 arcs, and the outer
+  // equator loop as a third arc: every arc open is a disc.
+  CoverMesh cover{mesh->vertices, mesh->faces, {}};
+  const double pi = std::numbers::pi;
+  auto meridian = [&](double v) { return Vec3(1.0 + 0.25 * std::cos(v), 0, 0.25 * std::sin(v)); };
+  auto equator = [&](double u) { return Vec3(1.25 * std::cos(u), 1.25 * std::sin(u), 0); };
+  for (int q = 0; q < 2; ++q) {
+    std::vector<Vec3> points;
+    for (int k = 0; k <= 8; ++k) points.push_back(meridian(pi * (q + k / 8.0)));
+    cover.arcs.push_back(arc_through(cover, points, "meridian-" + std::to_string(q)));
+  }
+  std::vector<Vec3> loop;
+  for (int k = 0; k <= 16; ++k) loop.push_back(equator(pi * k / 8.0));
+  cover.arcs.push_back(arc_through(cover, loop, "equator"));
+  ASSERT_TRUE(planner::validate(cover).empty()) << planner::validate(cover).front();
+  cloth::SdfParams sdf_params;
+  sdf_params.resolution = 48;
+  const cloth::SignedDistanceField wearer(mesh->vertices, mesh->faces, sdf_params);
+
+  auto params = test_params();
+  const auto result = planner::eliminate(cover, wearer, params);
+  ASSERT_TRUE(result.wearable()) << "the disc cut must come off";
+  int sewn = 0, laced = 0;
+  for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
+    const auto& arc = result.arcs[a];
+    EXPECT_GE(arc.position, 0);
+    (arc.label == planner::Label::Sew ? sewn : laced) += 1;
+    EXPECT_EQ(arc.label == planner::Label::Sew, arc.test.wearable);
+    // Physics: sewing the outer equator closes a band of cloth around the
+    // tube, which can never come off. Never over-sew.
+    if (a == 2) {
+      EXPECT_EQ(arc.label, planner::Label::Lace) << cover.arcs[a].name;
+    }
+  }
+  EXPECT_GE(sewn, 1);
+  EXPECT_GE(laced, 1);
+  std::cout << "torus-qd: " << sewn << " sewn, " << laced << " laced:";
+  for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
+    std::cout << ' ' << cover.arcs[a].name << '=' << planner::to_string(result.arcs[a].label);
+  }
+  std::cout << '\n';
+  // The final configuration passes the test again with other seeds.
+  const CoverMesh dressed = planner::dressed(cover, wearer, params.cloth);
+  params.cloth.max_steps = 2000;
+  for (std::uint64_t seed : {101u, 202u}) {
+    EXPECT_TRUE(planner::test_wearability(dressed, result.open(), wearer, params, seed).wearable)
+        << "seed " << seed;
+  }
+}
+
+// --- reading a cut folder ---------------------------------------------------
+
+TEST(WearabilityIoTest, ReadsASplitCutMeshAndItsArcs) {
+  // A square of two quads, split along its middle edge (vertices 1-4 and
+  // 6-7 are the two sides): welding joins them, the arc names split indices.
+  std::istringstream obj(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 1 0 0\nv 2 0 0\nv 1 1 0\nv 2 1 0\n"
+      "f 1 2 4 3\nf 5 6 8 7\n");
+  knitout::DiagnosticSink sink;
+  const auto mesh = planner::read_obj(obj, "cut-mesh.obj", sink);
+  ASSERT_TRUE(mesh);
+  const auto cuts = nlohmann::json::parse(R"({"arcs": [{"id": 7, "edges": [[4, 6]]}]})");
+  const auto cover = planner::read_cover_mesh(*mesh, cuts, "cuts.json", sink);
+  ASSERT_TRUE(cover) << knitout::format(sink.diagnostics().front());
+  EXPECT_EQ(cover->vertices.size(), 6u);
+  ASSERT_EQ(cover->arcs.size(), 1u);
+  EXPECT_EQ(cover->arcs[0].name, "7");
+  EXPECT_EQ(planner::open_cuts(*cover, {true}).positions.size(), 8u);
+  EXPECT_EQ(planner::open_cuts(*cover, {false}).positions.size(), 6u);
+}
+
+TEST(WearabilityIoTest, ReportsBadInputWithCodes) {
+  std::istringstream obj("v 0 0 0\nv 1 0 0\nv 0 1 x\nf 1 2 9\n");
+  knitout::DiagnosticSink sink;
+  EXPECT_FALSE(planner::read_obj(obj, "m.obj", sink));
+  ASSERT_EQ(sink.diagnostics().size(), 2u);
+  EXPECT_EQ(knitout::format(sink.diagnostics()[0]),
+            "m.obj:3: error: [W001] vertex needs three numbers: 'v 0 1 x'");
+  EXPECT_EQ(knitout::format(sink.diagnostics()[1]),
+            "m.obj:4: error: [W002] face refers to vertex 9, but the file has 2");
+
+  std::istringstream good("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  knitout::DiagnosticSink sink2;
+  const auto mesh = planner::read_obj(good, "m.obj", sink2);
+  ASSERT_TRUE(mesh);
+  EXPECT_FALSE(planner::read_cover_mesh(
+      *mesh, nlohmann::json::parse(R"({"arcs": [{"edges": [[0, 5]]}]})"), "cuts.json", sink2));
+  EXPECT_EQ(knitout::format(sink2.diagnostics().back()),
+            "cuts.json: error: [W010] arc 0: vertex index 5 is not in 0..2");
+  knitout::DiagnosticSink sink3;
+  EXPECT_FALSE(planner::read_cover_mesh(
+      *mesh, nlohmann::json::parse(R"({"arcs": [{"vertices": [0, 1, 2, 1]}]})"), "cuts.json",
+      sink3));
+  EXPECT_EQ(knitout::format(sink3.diagnostics().back()),
+            "cuts.json: error: [W011] arc 0 edge 2 (2-1) is also in arc 0");
+  knitout::DiagnosticSink sink4;
+  EXPECT_FALSE(
+      planner::read_cover_mesh(*mesh, nlohmann::json::parse(R"([1, 2])"), "cuts.json", sink4));
+  EXPECT_EQ(knitout::format(sink4.diagnostics().back()),
+            "cuts.json: error: [W010] expected an object with an array \"arcs\"");
+}
+
+}  // namespace
+}  // namespace wearknit::test
