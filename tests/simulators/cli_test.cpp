@@ -151,8 +151,14 @@ TEST_F(VmCliTest, SimulatePrintsStatistics) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("  loops made           84\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  bed span             12 needles (slots 0 to 11)\n"), std::string::npos);
-  EXPECT_NE(r.out.find("  DAT passes           not computed\n"), std::string::npos);
   EXPECT_NE(r.out.find("  estimated time       "), std::string::npos);
+  // The DAT backend's passes (counted against reference DATs in
+  // tests/backends/dat_cli_test.cpp): the same number in both lines.
+  const std::size_t at = r.out.find("  DAT passes           ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string count = r.out.substr(at + 23, r.out.find('\n', at) - at - 23);
+  EXPECT_GT(std::stoi(count), 0);
+  EXPECT_NE(r.out.find("  carriage passes: " + count + " ("), std::string::npos) << r.out;
 }
 
 TEST_F(VmCliTest, SimulateJsonHasStatsAndDiagnostics) {
@@ -160,7 +166,11 @@ TEST_F(VmCliTest, SimulateJsonHasStatsAndDiagnostics) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.rfind("{\"stats\": {", 0), 0u) << r.out;
   EXPECT_NE(r.out.find("\"loops_made\": 84"), std::string::npos);
-  EXPECT_NE(r.out.find("\"dat_passes\": null"), std::string::npos);
+  const std::size_t at = r.out.find("\"dat_passes\": ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string count = r.out.substr(at + 14, r.out.find_first_of(",\n}", at) - at - 14);
+  EXPECT_GT(std::stoi(count), 0) << r.out;
+  EXPECT_NE(r.out.find("\"carriage_passes\": {\"count\": " + count), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(", \"diagnostics\": ["), std::string::npos);
 }
 
