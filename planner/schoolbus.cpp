@@ -1,0 +1,73 @@
+#include "planner/schoolbus.hpp"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace planner {
+
+std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
+                                const std::function<bool(int)>& occupied, int max_racking) {
+  if (max_racking < 1) throw std::logic_error("schoolbus: racking limit below 1");
+  // One rider per needle that moves.
+  std::map<int, int> to_of;  // from -> to
+  for (const LoopMove& m : moves) {
+    if (m.from == m.to) continue;
+    auto [it, added] = to_of.emplace(m.from, m.to);
+    if (!added && it->second != m.to)
+      throw std::logic_error("schoolbus: two loops on needle " + std::to_string(m.from) +
+                             " want different needles");
+  }
+  for (const LoopMove& m : moves) {
+    if (m.from == m.to && to_of.count(m.from) != 0)
+      throw std::logic_error("schoolbus: a loop on needle " + std::to_string(m.from) +
+                             " both stays and moves");
+  }
+  struct Rider {
+    int at;
+    int to;
+  };
+  std::vector<Rider> riders;
+  for (const auto& [from, to] : to_of) riders.push_back({from, to});
+  std::vector<Transfer> plan;
+  while (true) {
+    std::vector<std::size_t> aboard;
+    for (std::size_t i = 0; i < riders.size(); ++i) {
+      if (riders[i].at != riders[i].to) aboard.push_back(i);
+    }
+    if (aboard.empty()) break;
+    for (std::size_t i : aboard) plan.push_back({0, true, riders[i].at, riders[i].at});
+    // Destinations and stops already taken this round, to keep riders apart.
+    std::map<int, int> landing;  // front needle -> final destination of who got off there
+    for (int sign : {+1, -1}) {
+      for (int step = 1; step <= max_racking; ++step) {
+        const int r = sign * step;
+        for (std::size_t i : aboard) {
+          Rider& rider = riders[i];
+          const int left = rider.to - rider.at;
+          if (left == 0 || (left > 0) != (sign > 0)) continue;
+          const bool last_stop = step == max_racking;
+          if (left != r && !(last_stop && std::abs(left) > max_racking)) continue;
+          const int stop = rider.at + r;
+          if (stop != rider.to) {
+            // An intermediate stop must be empty and not anyone's stop.
+            if (occupied(stop) || landing.count(stop) != 0)
+              throw std::logic_error("schoolbus: intermediate stop f" + std::to_string(stop) +
+                                     " is taken");
+          } else {
+            auto it = landing.find(stop);
+            if (it != landing.end() && it->second != rider.to)
+              throw std::logic_error("schoolbus: f" + std::to_string(stop) + " is taken");
+          }
+          landing[stop] = rider.to;
+          plan.push_back({r, false, stop, rider.at});
+          rider.at = stop;
+        }
+      }
+    }
+  }
+  return plan;
+}
+
+}  // namespace planner

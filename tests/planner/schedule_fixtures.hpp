@@ -1,0 +1,217 @@
+// Synthetic stitch meshes for the scheduler's tests and benchmark, built row
+// by row on a "front": the polyline of course edges whose loops are not yet
+// knit through. Each new row replaces a run of the front's segments by its
+// own top edges, so short rows, branches and shaping come out of the same
+// few calls.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "planner/stitch_mesh.hpp"
+
+namespace planner::fixtures {
+
+// What a face of a new row does: how many front segments it knits through
+// (1 or 2) and how many top edges it makes (1 or 2). A short-row end is a
+// triangle: `left_end`/`right_end` on a row's first/last face.
+struct FaceSpec {
+  int in = 1;
+  int out = 1;
+};
+
+class Builder {
+ public:
+  // A first row of `width` knit faces, cast on.
+  explicit Builder(int width) {
+    std::vector<std::uint32_t> bottom, top;
+    for (int i = 0; i <= width; ++i) bottom.push_back(vertex(i, 0));
+    front_ = bottom;
+    height_ = 0;
+    std::vector<FaceSpec> specs(static_cast<std::size_t>(width));
+    add_row(0, specs);
+  }
+
+  // A row over front segments [first, first + sum(in)). A triangle end has
+  // in = out = 1 and shares its outer vertex between bottom and top.
+  // Returns the index of the first new top segment in the new front.
+  int add_row(int first, const std::vector<FaceSpec>& specs, bool left_end = false,
+              bool right_end = false) {
+    ++height_;
+    int consumed = 0, made = 0;
+    for (const FaceSpec& f : specs) {
+      consumed += f.in;
+      made += f.out;
+    }
+    const auto b0 = static_cast<std::size_t>(first);
+    std::vector<std::uint32_t> bottom(front_.begin() + static_cast<std::ptrdiff_t>(b0),
+                                      front_.begin() + static_cast<std::ptrdiff_t>(b0) + consumed + 1);
+    // Top vertices, spread over the bottom's x range.
+    const double x0 = pos_[bottom.front()].x(), x1 = pos_[bottom.back()].x();
+    std::vector<std::uint32_t> top;
+    for (int i = 0; i <= made; ++i) {
+      if (i == 0 && left_end) {
+        top.push_back(bottom.front());
+      } else if (i == made && right_end) {
+        top.push_back(bottom.back());
+      } else {
+        top.push_back(vertex(x0 + (x1 - x0) * i / std::max(1, made), height_));
+      }
+    }
+    int bi = 0, ti = 0;
+    for (std::size_t k = 0; k < specs.size(); ++k) {
+      const FaceSpec& f = specs[k];
+      StitchFace face;
+      const bool left_tri = left_end && k == 0;
+      const bool right_tri = right_end && k + 1 == specs.size();
+      for (int j = 0; j <= f.in; ++j) face.vertices.push_back(bottom[static_cast<std::size_t>(bi + j)]);
+      for (int j = 0; j < f.in; ++j) face.roles.push_back(EdgeRole::CourseIn);
+      if (right_tri) {
+        // bottom-left, bottom-right (= top-right), top-left
+        face.roles.push_back(EdgeRole::CourseOut);
+        face.vertices.push_back(top[static_cast<std::size_t>(ti)]);
+        face.roles.push_back(EdgeRole::Wale);
+      } else {
+        face.roles.push_back(EdgeRole::Wale);
+        for (int j = f.out; j >= 0; --j) {
+          if (j == 0 && left_tri) break;
+          face.vertices.push_back(top[static_cast<std::size_t>(ti + j)]);
+        }
+        // Sides after the right wale: the top edges, then the left wale.
+        for (int j = 0; j < f.out; ++j) face.roles.push_back(EdgeRole::CourseOut);
+        if (!left_tri) face.roles.push_back(EdgeRole::Wale);
+      }
+      face.arcs.assign(face.vertices.size(), kNoArc);
+      face.type = face.vertices.size() == 3 ? FaceType::ShortRow
+                  : f.in == 2               ? FaceType::Decrease
+                  : f.out == 2              ? FaceType::Increase
+                                            : FaceType::Knit;
+      mesh_.faces.push_back(std::move(face));
+      bi += f.in;
+      ti += f.out;
+    }
+    std::vector<std::uint32_t> next(front_.begin(), front_.begin() + static_cast<std::ptrdiff_t>(b0));
+    next.insert(next.end(), top.begin(), top.end());
+    next.insert(next.end(), front_.begin() + static_cast<std::ptrdiff_t>(b0) + consumed + 1,
+                front_.end());
+    front_ = std::move(next);
+    return first;
+  }
+
+  int front_segments() const { return static_cast<int>(front_.size()) - 1; }
+
+  StitchMesh mesh() const {
+    StitchMesh m = mesh_;
+    m.positions = pos_;
+    m.course_mm = 1.05;
+    m.wale_mm = 2.875;
+    return m;
+  }
+
+ private:
+  std::uint32_t vertex(double x, double y) {
+    pos_.emplace_back(x, y, 0.0);
+    return static_cast<std::uint32_t>(pos_.size() - 1);
+  }
+  StitchMesh mesh_;
+  std::vector<Eigen::Vector3d> pos_;
+  std::vector<std::uint32_t> front_;
+  int height_ = 0;
+};
+
+inline std::vector<FaceSpec> knits(int n) { return std::vector<FaceSpec>(static_cast<std::size_t>(n)); }
+
+// W x H rectangle of knit faces.
+inline StitchMesh rectangle(int width, int height) {
+  Builder b(width);
+  for (int r = 1; r < height; ++r) b.add_row(0, knits(width));
+  return b.mesh();
+}
+
+// A trapezoid narrowing by a decrease at both ends of every other row.
+inline StitchMesh trapezoid(int width, int height) {
+  Builder b(width);
+  int w = width;
+  for (int r = 1; r < height; ++r) {
+    if (r % 2 == 1 && w >= 6) {
+      std::vector<FaceSpec> specs(static_cast<std::size_t>(w - 2));
+      specs.front().in = 2;
+      specs.back().in = 2;
+      b.add_row(0, specs);
+      w -= 2;
+    } else {
+      b.add_row(0, knits(w));
+    }
+  }
+  return b.mesh();
+}
+
+// A shape widening by an increase at both ends of every other row.
+inline StitchMesh widening(int width, int height) {
+  Builder b(width);
+  int w = width;
+  for (int r = 1; r < height; ++r) {
+    if (r % 2 == 1) {
+      std::vector<FaceSpec> specs(static_cast<std::size_t>(w));
+      specs.front().out = 2;
+      specs.back().out = 2;
+      b.add_row(0, specs);
+      w += 2;
+    } else {
+      b.add_row(0, knits(w));
+    }
+  }
+  return b.mesh();
+}
+
+// Short rows: a full row, then a short row ending in a triangle on the right
+// (one side) or on both sides, then a full row over all of it; repeated.
+inline StitchMesh short_rows(int width, int repeats, bool both_sides) {
+  Builder b(width);
+  b.add_row(0, knits(width));
+  for (int k = 0; k < repeats; ++k) {
+    const int inset = 3;
+    if (both_sides) {
+      b.add_row(inset, knits(width - 2 * inset), true, true);
+    } else {
+      b.add_row(0, knits(width - inset), false, true);
+    }
+    b.add_row(0, knits(width));
+  }
+  return b.mesh();
+}
+
+// Fig. 9: a base A with two branches B (left) and C (right) above it, a gap
+// of bound-off loops between them.
+inline StitchMesh y_shape(int width, int base_rows, int branch_width, int branch_rows) {
+  Builder b(width);
+  for (int r = 1; r < base_rows; ++r) b.add_row(0, knits(width));
+  for (int r = 0; r < branch_rows; ++r) {
+    b.add_row(0, knits(branch_width));
+    b.add_row(width - branch_width, knits(branch_width));
+  }
+  return b.mesh();
+}
+
+// Fig. 10: two branches that each widen over the other's base, so whichever
+// is knit first covers the needles holding the other's loops: no order works
+// without a cut.
+inline StitchMesh crossing_branches(int width, int branch_width, int rows) {
+  Builder b(width);
+  b.add_row(0, knits(width));
+  int left_w = branch_width;
+  int right_w = branch_width;
+  for (int r = 0; r < rows; ++r) {
+    std::vector<FaceSpec> left(static_cast<std::size_t>(left_w));
+    left.back().out = 2;  // widen to the right
+    b.add_row(0, left);
+    ++left_w;
+    std::vector<FaceSpec> right(static_cast<std::size_t>(right_w));
+    right.front().out = 2;  // widen to the left
+    b.add_row(b.front_segments() - right_w, right);
+    ++right_w;
+  }
+  return b.mesh();
+}
+
+}  // namespace planner::fixtures
