@@ -51,10 +51,10 @@ struct EmitParams {
 // One loop of a subdivided face, in the order the yarn makes them (§7.4).
 struct TraceStep {
   int face = 0;
-  int part = 0;   // 0: lower half (first pass), 1: upper half (second pass)
+  int part = 0;  // 0: lower half (first pass), 1: upper half (second pass)
   char bed = 'f';
   int needle = 0;
-  int line = 0;   // 1-based line of the knit instruction in the piece's knitout
+  int line = 0;  // 1-based line of the knit instruction in the piece's knitout
 };
 
 // Estimated machine time: each carriage pass travels its needle span plus

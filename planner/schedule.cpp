@@ -14,7 +14,9 @@
 namespace planner {
 namespace {
 
-std::string face_name(std::size_t f) { return "face " + std::to_string(f); }
+std::string face_name(std::size_t f) {
+  return "face " + std::to_string(f);
+}
 
 std::uint64_t side_key(std::uint32_t a, std::uint32_t b) {
   if (a > b) std::swap(a, b);
@@ -52,7 +54,8 @@ FaceSides classify_sides(const StitchFace& face, std::size_t f) {
         throw ScheduleError(face_name(f) + ": every side has the same role");
       return found;
     }
-    for (int i = start; role(i) == r && static_cast<int>(found.size()) < n; ++i) found.push_back(i % n);
+    for (int i = start; role(i) == r && static_cast<int>(found.size()) < n; ++i)
+      found.push_back(i % n);
     return found;
   };
   sides.in = run(EdgeRole::CourseIn);
@@ -97,8 +100,7 @@ void build_rows(const StitchMesh& mesh, Schedule& s) {
   std::unordered_map<std::uint64_t, std::vector<std::pair<int, int>>> by_key;
   for (std::size_t f = 0; f < nf; ++f) {
     const StitchFace& face = mesh.faces[f];
-    if (face.vertices.size() < 3)
-      throw ScheduleError(face_name(f) + ": fewer than three vertices");
+    if (face.vertices.size() < 3) throw ScheduleError(face_name(f) + ": fewer than three vertices");
     if (face.roles.size() != face.vertices.size())
       throw ScheduleError(face_name(f) + ": " + std::to_string(face.roles.size()) +
                           " side roles for " + std::to_string(face.vertices.size()) + " vertices");
@@ -250,10 +252,12 @@ void build_patches(Schedule& s) {
     }
   }
   if (topo.size() != nr)
-    throw ScheduleError("the row graph has a cycle: course directions of the stitch mesh disagree (" +
-                        std::to_string(nr - topo.size()) + " rows on cycles)");
+    throw ScheduleError(
+        "the row graph has a cycle: course directions of the stitch mesh disagree (" +
+        std::to_string(nr - topo.size()) + " rows on cycles)");
   std::vector<int> topo_index(nr);
-  for (std::size_t i = 0; i < nr; ++i) topo_index[static_cast<std::size_t>(topo[i])] = static_cast<int>(i);
+  for (std::size_t i = 0; i < nr; ++i)
+    topo_index[static_cast<std::size_t>(topo[i])] = static_cast<int>(i);
   // Fig. 8d: an edge u->v is redundant when v is reached from u another way
   // (the path through a short row makes the direct edge redundant).
   s.reduced_successors.assign(nr, {});
@@ -265,7 +269,8 @@ void build_patches(Schedule& s) {
       stack.clear();
       const int stamp = static_cast<int>(u * nr) + v;
       for (int w : s.row_successors[u]) {
-        if (w != v && topo_index[static_cast<std::size_t>(w)] < topo_index[static_cast<std::size_t>(v)]) {
+        if (w != v &&
+            topo_index[static_cast<std::size_t>(w)] < topo_index[static_cast<std::size_t>(v)]) {
           stack.push_back(w);
           mark[static_cast<std::size_t>(w)] = stamp;
         }
@@ -359,7 +364,8 @@ void assign_needles(const StitchMesh& mesh, Schedule& s) {
           }
         }
       }
-      for (std::size_t i = 0; i < ins.size(); ++i) local_bottom[static_cast<std::size_t>(ins[i])] = b[i];
+      for (std::size_t i = 0; i < ins.size(); ++i)
+        local_bottom[static_cast<std::size_t>(ins[i])] = b[i];
       // Top edges on consecutive needles, shifted to make the total transfer
       // distance least; a row with a short-row face is aligned on it (§7.2).
       std::vector<double> diffs;
@@ -568,9 +574,8 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
 void choose_order(Schedule& s, const ScheduleParams& params) {
   const auto start = std::chrono::steady_clock::now();
   const bool by_time = params.time_budget_s > 0;
-  const std::uint64_t limit =
-      by_time ? std::numeric_limits<std::uint64_t>::max()
-              : static_cast<std::uint64_t>(std::max(1, params.trials));
+  const std::uint64_t limit = by_time ? std::numeric_limits<std::uint64_t>::max()
+                                      : static_cast<std::uint64_t>(std::max(1, params.trials));
   unsigned threads = params.threads > 0 ? static_cast<unsigned>(params.threads)
                                         : std::max(1u, std::thread::hardware_concurrency());
   std::atomic<std::uint64_t> next{0};
@@ -600,10 +605,9 @@ void choose_order(Schedule& s, const ScheduleParams& params) {
   std::sort(results.begin(), results.end(),
             [](const TrialResult& a, const TrialResult& b) { return a.trial < b.trial; });
   s.trials = results;
-  const auto best = std::min_element(results.begin(), results.end(),
-                                     [](const TrialResult& a, const TrialResult& b) {
-                                       return a.cuts < b.cuts;
-                                     });
+  const auto best =
+      std::min_element(results.begin(), results.end(),
+                       [](const TrialResult& a, const TrialResult& b) { return a.cuts < b.cuts; });
   s.best_trial = best->trial;
   s.patch_order = random_patch_order(s, params.seed, best->trial);
   s.cut_rows = simulate_order(s, s.patch_order);
@@ -622,7 +626,8 @@ void make_pieces(Schedule& s) {
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int x) {
     while (parent[static_cast<std::size_t>(x)] != x) {
-      parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+      parent[static_cast<std::size_t>(x)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
       x = parent[static_cast<std::size_t>(x)];
     }
     return x;

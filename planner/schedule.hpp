@@ -42,7 +42,7 @@ inline constexpr int kNone = -1;
 struct CourseEdge {
   int lower = kNone;
   int upper = kNone;
-  int needle = 0;  // §7.2: where the loop sits once `lower` is knit (global)
+  int needle = 0;    // §7.2: where the loop sits once `lower` is knit (global)
   bool cut = false;  // §7.3: cut to avoid an overlap (a seam labelled sew)
 };
 
@@ -69,10 +69,10 @@ struct TrialResult {
 };
 
 struct ScheduleParams {
-  int trials = 100;              // random knitting orders tried (§7.3)
-  double time_budget_s = 0;      // > 0: try orders until this much time has passed instead
-  std::uint64_t seed = 1;        // every random choice derives from it and the trial number
-  int threads = 0;               // 0: all cores
+  int trials = 100;          // random knitting orders tried (§7.3)
+  double time_budget_s = 0;  // > 0: try orders until this much time has passed instead
+  std::uint64_t seed = 1;    // every random choice derives from it and the trial number
+  int threads = 0;           // 0: all cores
 };
 
 struct Piece {
@@ -89,10 +89,10 @@ struct Schedule {
   std::vector<std::vector<int>> row_successors;
   std::vector<std::vector<int>> reduced_successors;
   std::vector<Patch> patches;
-  std::vector<int> patch_order;       // §7.3: the order kept
-  std::vector<TrialResult> trials;    // every order tried, in trial order
+  std::vector<int> patch_order;     // §7.3: the order kept
+  std::vector<TrialResult> trials;  // every order tried, in trial order
   std::uint64_t best_trial = 0;
-  int cuts = 0;                       // cuts of the kept order (row pairs separated)
+  int cuts = 0;                               // cuts of the kept order (row pairs separated)
   std::vector<std::pair<int, int>> cut_rows;  // (lower row, upper row) per cut
   std::vector<Piece> pieces;
 };

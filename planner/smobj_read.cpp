@@ -83,8 +83,8 @@ StitchMesh read_smobj(std::istream& in, std::string_view source, knitout::Diagno
       while (words >> word) {
         std::uint32_t k = 0;
         if (typed >= mesh.faces.size()) {
-          error("S903", "type given for face " + std::to_string(typed + 1) +
-                            ", which is not defined yet");
+          error("S903",
+                "type given for face " + std::to_string(typed + 1) + ", which is not defined yet");
           break;
         }
         if (!parse_uint(word, k) || k == 0 || k > library.size()) {

@@ -13,6 +13,8 @@ const std::vector<Verb>& verbs() {
       {"fmt", "fmt FILE.k [-o OUT.k] [--check]", "write a knitout file in canonical form", run_fmt},
       {"demo", "demo [-o DIR]", "run the built-in example end to end and say what to open",
        run_demo},
+      {"schedule", "schedule DIR [--trials N | --time-budget S] [--pattern plain|seed] [--seed N]",
+       "knitting schedule and knitout pieces for a plan folder's stitch mesh (§7)", run_schedule},
   };
   return kVerbs;
 }

@@ -36,7 +36,8 @@ inline BedCheck check_bed(const knitout::Program& program, int needles = 540) {
   };
   auto needle_ok = [&](const knitout::Instruction& i, knitout::Needle n) {
     if (n.is_slider()) fail(i, "slider used");
-    if (n.index < 1 || n.index > needles) fail(i, "needle " + knitout::to_string(n) + " off the bed");
+    if (n.index < 1 || n.index > needles)
+      fail(i, "needle " + knitout::to_string(n) + " off the bed");
   };
   for (const auto& i : program.instructions) {
     switch (i.op) {

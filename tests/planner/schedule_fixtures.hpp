@@ -6,6 +6,9 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <ostream>
+#include <string>
 #include <vector>
 
 #include "planner/stitch_mesh.hpp"
@@ -44,8 +47,9 @@ class Builder {
       made += f.out;
     }
     const auto b0 = static_cast<std::size_t>(first);
-    std::vector<std::uint32_t> bottom(front_.begin() + static_cast<std::ptrdiff_t>(b0),
-                                      front_.begin() + static_cast<std::ptrdiff_t>(b0) + consumed + 1);
+    std::vector<std::uint32_t> bottom(
+        front_.begin() + static_cast<std::ptrdiff_t>(b0),
+        front_.begin() + static_cast<std::ptrdiff_t>(b0) + consumed + 1);
     // Top vertices, spread over the bottom's x range.
     const double x0 = pos_[bottom.front()].x(), x1 = pos_[bottom.back()].x();
     std::vector<std::uint32_t> top;
@@ -64,7 +68,8 @@ class Builder {
       StitchFace face;
       const bool left_tri = left_end && k == 0;
       const bool right_tri = right_end && k + 1 == specs.size();
-      for (int j = 0; j <= f.in; ++j) face.vertices.push_back(bottom[static_cast<std::size_t>(bi + j)]);
+      for (int j = 0; j <= f.in; ++j)
+        face.vertices.push_back(bottom[static_cast<std::size_t>(bi + j)]);
       for (int j = 0; j < f.in; ++j) face.roles.push_back(EdgeRole::CourseIn);
       if (right_tri) {
         // bottom-left, bottom-right (= top-right), top-left
@@ -90,7 +95,8 @@ class Builder {
       bi += f.in;
       ti += f.out;
     }
-    std::vector<std::uint32_t> next(front_.begin(), front_.begin() + static_cast<std::ptrdiff_t>(b0));
+    std::vector<std::uint32_t> next(front_.begin(),
+                                    front_.begin() + static_cast<std::ptrdiff_t>(b0));
     next.insert(next.end(), top.begin(), top.end());
     next.insert(next.end(), front_.begin() + static_cast<std::ptrdiff_t>(b0) + consumed + 1,
                 front_.end());
@@ -119,7 +125,9 @@ class Builder {
   int height_ = 0;
 };
 
-inline std::vector<FaceSpec> knits(int n) { return std::vector<FaceSpec>(static_cast<std::size_t>(n)); }
+inline std::vector<FaceSpec> knits(int n) {
+  return std::vector<FaceSpec>(static_cast<std::size_t>(n));
+}
 
 // W x H rectangle of knit faces.
 inline StitchMesh rectangle(int width, int height) {
@@ -212,6 +220,30 @@ inline StitchMesh crossing_branches(int width, int branch_width, int rows) {
     ++right_w;
   }
   return b.mesh();
+}
+
+// The .smobj text of `mesh` (a face library entry per distinct list of side
+// roles), for tests of the readers and the CLI; the library's own writer
+// belongs to the stitch-mesh stage.
+inline void write_smobj_text(std::ostream& out, const StitchMesh& mesh) {
+  std::map<std::vector<EdgeRole>, int> library;
+  auto name = [](EdgeRole r) {
+    return r == EdgeRole::CourseIn ? "-l" : r == EdgeRole::CourseOut ? "+l" : "y";
+  };
+  for (const StitchFace& f : mesh.faces) {
+    if (library.emplace(f.roles, static_cast<int>(library.size()) + 1).second) {
+      out << "L face" << library.size();
+      for (EdgeRole r : f.roles) out << ' ' << name(r);
+      out << '\n';
+    }
+  }
+  for (const auto& p : mesh.positions) out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  for (const StitchFace& f : mesh.faces) {
+    out << 'f';
+    for (auto v : f.vertices) out << ' ' << v + 1;
+    out << '\n';
+  }
+  for (const StitchFace& f : mesh.faces) out << "T " << library[f.roles] << '\n';
 }
 
 }  // namespace planner::fixtures

@@ -118,7 +118,8 @@ TEST(ScheduleTest, RectangleNeedsNoTransfers) {
   for (const CourseEdge& e : s.edges) {
     if (e.lower == kNone || e.upper == kNone) continue;
     // The face above works on the needle where the loop already is.
-    const int work = s.edges[static_cast<std::size_t>(s.faces[static_cast<std::size_t>(e.upper)].out[0])].needle;
+    const int work =
+        s.edges[static_cast<std::size_t>(s.faces[static_cast<std::size_t>(e.upper)].out[0])].needle;
     EXPECT_EQ(e.needle, work);
   }
 }
@@ -141,7 +142,8 @@ TEST(ScheduleTest, BranchesAgreeWithTheBaseAlongTheirBoundary) {
   const Schedule s = run(fx::y_shape(12, 2, 4, 2));
   for (const CourseEdge& e : s.edges) {
     if (e.lower == kNone || e.upper == kNone) continue;
-    const int work = s.edges[static_cast<std::size_t>(s.faces[static_cast<std::size_t>(e.upper)].out[0])].needle;
+    const int work =
+        s.edges[static_cast<std::size_t>(s.faces[static_cast<std::size_t>(e.upper)].out[0])].needle;
     EXPECT_EQ(e.needle, work);
   }
 }
@@ -282,7 +284,8 @@ TEST(KnitoutEmitTest, EveryPieceOfEveryFixtureIsValidKnitout) {
         EXPECT_TRUE(check.errors.empty()) << check.errors.front();
         EXPECT_EQ(check.transfers, piece.stats.transfers);
         EXPECT_EQ(check.knits, piece.stats.knits);
-        EXPECT_EQ(piece.stats.lines, static_cast<int>(std::count(piece.knitout.begin(), piece.knitout.end(), '\n')));
+        EXPECT_EQ(piece.stats.lines,
+                  static_cast<int>(std::count(piece.knitout.begin(), piece.knitout.end(), '\n')));
       }
     }
   }
