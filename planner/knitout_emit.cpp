@@ -152,6 +152,17 @@ class Emitter {
     stitched_ = false;
     ++result_.stats.yarn_ins;
   }
+  // Rather than float further than max_float_needles to `n`, the yarn goes
+  // out and comes in again (the operator trims the ends).
+  void cut_yarn_if_far(int n) {
+    if (in_ && std::abs(carrier_at_ - n) > params_.max_float_needles) {
+      release_if_pending();
+      end_pass();
+      line("outhook " + params_.carrier);
+      in_ = false;
+    }
+    if (!in_) bring_in();
+  }
   void release_if_pending() {
     if (!hook_pending_ || !stitched_) return;
     end_pass();
@@ -189,13 +200,7 @@ class Emitter {
     int dir = +1;
     if (in_ && std::abs(carrier_at_ - right) < std::abs(carrier_at_ - left)) dir = -1;
     const int start = dir > 0 ? left : right;
-    if (in_ && std::abs(carrier_at_ - start) > params_.max_float_needles) {
-      release_if_pending();
-      end_pass();
-      line("outhook " + params_.carrier);
-      in_ = false;
-    }
-    if (!in_) bring_in();
+    cut_yarn_if_far(start);
     std::vector<int> order(faces.begin(), faces.end());  // in pass A's direction
     if (dir < 0) std::reverse(order.begin(), order.end());
 
@@ -298,8 +303,11 @@ class Emitter {
       stitch("knit", dir, b, n, intermediate(f));
       result_.trace.push_back({f, 0, b, n, line_});
     }
-    if (params_.pattern == StitchPattern::Seed) to_front(0);
+    // The hook lets go of the yarn end once a pass of stitches holds it,
+    // right after that pass (the reference backend wants no other pass
+    // between them).
     release_if_pending();
+    if (params_.pattern == StitchPattern::Seed) to_front(0);
 
     // Pass B: the upper halves, back to the start side.
     if (params_.pattern == StitchPattern::Seed) to_back(1);
@@ -360,7 +368,9 @@ class Emitter {
       return;
     }
     end_pass();
+    cut_yarn_if_far(needle(tops[i]));
     stitch("knit", dir, 'f', needle(tops[i]), kTail);
+    release_if_pending();
     for (std::size_t k = i; k < j; ++k) {
       const int from = needle(tops[k]);
       const int to = needle(tops[k + 1]);

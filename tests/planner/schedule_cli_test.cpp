@@ -44,8 +44,7 @@ TEST(SmobjReadTest, ReadsBackFacesRolesAndTypes) {
 }
 
 TEST(SmobjReadTest, RejectsTypeOutsideTheLibrary) {
-  std::istringstream in(
-      "L knit -l y +l y\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nT 2\n");
+  std::istringstream in("L knit -l y +l y\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nT 2\n");
   knitout::DiagnosticSink sink;
   read_smobj(in, "m.smobj", sink);
   ASSERT_EQ(sink.error_count(), 1u);
@@ -54,8 +53,7 @@ TEST(SmobjReadTest, RejectsTypeOutsideTheLibrary) {
 }
 
 TEST(SmobjReadTest, AcceptsTheSameFaceWithTypeInsideTheLibrary) {
-  std::istringstream in(
-      "L knit -l y +l y\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nT 1\n");
+  std::istringstream in("L knit -l y +l y\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nT 1\n");
   knitout::DiagnosticSink sink;
   const StitchMesh mesh = read_smobj(in, "m.smobj", sink);
   EXPECT_FALSE(sink.has_errors());
@@ -110,8 +108,8 @@ TEST(ScheduleCliTest, MissingStitchMeshIsAnIoError) {
   const fs::path dir = wearknit::test::make_temp_dir("sched-empty");
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string());
   EXPECT_EQ(result.exit_code, 2);
-  EXPECT_EQ(result.err, (dir / "stitch-mesh.smobj").string() +
-                            ": error: [S900] cannot open the stitch mesh\n");
+  EXPECT_EQ(result.err,
+            (dir / "stitch-mesh.smobj").string() + ": error: [S900] cannot open the stitch mesh\n");
 }
 
 TEST(ScheduleCliTest, UnschedulableMeshIsInvalidInput) {
@@ -120,8 +118,8 @@ TEST(ScheduleCliTest, UnschedulableMeshIsInvalidInput) {
   const fs::path dir = plan_folder(mesh, "sched-bad");
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string());
   EXPECT_EQ(result.exit_code, 1);
-  EXPECT_EQ(result.err, (dir / "stitch-mesh.smobj").string() +
-                            ": error: [S910] face 4: no course-in side\n");
+  EXPECT_EQ(result.err,
+            (dir / "stitch-mesh.smobj").string() + ": error: [S910] face 4: no course-in side\n");
   EXPECT_FALSE(fs::exists(dir / "pieces"));
 }
 
@@ -135,8 +133,8 @@ TEST(ScheduleCliTest, TrialsAndTimeBudgetExcludeEachOther) {
 
 TEST(ScheduleCliTest, TimeBudgetAloneIsAccepted) {
   const fs::path dir = plan_folder(fixtures::rectangle(3, 2), "sched-budget");
-  const auto result = wearknit::test::run_wearknit("schedule " + dir.string() +
-                                                      " --time-budget 0.05 --quiet");
+  const auto result =
+      wearknit::test::run_wearknit("schedule " + dir.string() + " --time-budget 0.05 --quiet");
   EXPECT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(result.out, "");
 }

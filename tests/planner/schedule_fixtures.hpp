@@ -222,6 +222,58 @@ inline StitchMesh crossing_branches(int width, int branch_width, int rows) {
   return b.mesh();
 }
 
+// A stand-in for the paper's bunny cover at the default gauge (about 8,000
+// stitches): a body that widens, carries short rows on both sides and
+// narrows again, then splits into two ears that narrow to their tips.
+inline StitchMesh cover_like() {
+  Builder b(70);
+  int w = 70;
+  for (int r = 1; r < 60; ++r) {
+    if (r % 8 == 0) {
+      b.add_row(4, knits(w - 8), true, true);  // short rows across the back
+      b.add_row(0, knits(w));
+    } else if (r < 24 && r % 2 == 1) {
+      std::vector<FaceSpec> specs(static_cast<std::size_t>(w));
+      specs.front().out = 2;
+      specs.back().out = 2;
+      b.add_row(0, specs);
+      w += 2;
+    } else if (r > 44 && r % 3 == 0) {
+      std::vector<FaceSpec> specs(static_cast<std::size_t>(w - 2));
+      specs.front().in = 2;
+      specs.back().in = 2;
+      b.add_row(0, specs);
+      w -= 2;
+    } else {
+      b.add_row(0, knits(w));
+    }
+  }
+  // Two ears, 30 wide, 40 rows, narrowing every fourth row.
+  int ear = 30;
+  int right_first = w - ear;
+  int left_w = ear, right_w = ear;
+  for (int r = 0; r < 40; ++r) {
+    const bool narrow = r % 4 == 3 && left_w > 8;
+    if (narrow) {
+      std::vector<FaceSpec> specs(static_cast<std::size_t>(left_w - 2));
+      specs.front().in = 2;
+      specs.back().in = 2;
+      b.add_row(0, specs);
+      left_w -= 2;
+      right_first -= 2;
+      std::vector<FaceSpec> rspecs(static_cast<std::size_t>(right_w - 2));
+      rspecs.front().in = 2;
+      rspecs.back().in = 2;
+      b.add_row(right_first, rspecs);
+      right_w -= 2;
+    } else {
+      b.add_row(0, knits(left_w));
+      b.add_row(right_first, knits(right_w));
+    }
+  }
+  return b.mesh();
+}
+
 // The .smobj text of `mesh` (a face library entry per distinct list of side
 // roles), for tests of the readers and the CLI; the library's own writer
 // belongs to the stitch-mesh stage.
