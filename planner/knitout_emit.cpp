@@ -361,19 +361,24 @@ class Emitter {
     }
   }
 
+  // Chain bind-off of tops[i..j] (consecutive needles). When a live loop
+  // sits next to the run, the chain runs towards it and its last loop is
+  // moved onto it, so the next stitch there holds the chain and nothing can
+  // unravel; otherwise the last loop stays on its needle.
   void bind_off(const std::vector<int>& tops, std::size_t i, std::size_t j, int dir) {
     for (std::size_t k = i; k <= j; ++k) where_.erase(tops[k]);
-    if (i == j) {
-      front_[needle(tops[i])].assign(1, kTail);
-      return;
+    std::vector<int> run(tops.begin() + static_cast<std::ptrdiff_t>(i),
+                         tops.begin() + static_cast<std::ptrdiff_t>(j) + 1);
+    int holder = kNone;  // the live course edge that takes the chain's last loop
+    int chain_dir = dir;
+    if (j + 1 < tops.size()) {
+      holder = tops[j + 1];
+    } else if (i > 0) {
+      holder = tops[i - 1];
+      std::reverse(run.begin(), run.end());
+      chain_dir = -dir;
     }
-    end_pass();
-    cut_yarn_if_far(needle(tops[i]));
-    stitch("knit", dir, 'f', needle(tops[i]), kTail);
-    release_if_pending();
-    for (std::size_t k = i; k < j; ++k) {
-      const int from = needle(tops[k]);
-      const int to = needle(tops[k + 1]);
+    const auto move = [&](int from, int to) {
       end_pass();
       rack(0);
       xfer('f', from, 'b', from);
@@ -381,8 +386,25 @@ class Emitter {
       xfer('b', from, 'f', to);
       rack(0);
       end_pass();
-      stitch("knit", dir, 'f', to, kTail);
+    };
+    if (run.size() > 1) {
+      end_pass();
+      cut_yarn_if_far(needle(run[0]));
+      stitch("knit", chain_dir, 'f', needle(run[0]), kTail);
+      release_if_pending();
+      for (std::size_t k = 0; k + 1 < run.size(); ++k) {
+        move(needle(run[k]), needle(run[k + 1]));
+        stitch("knit", chain_dir, 'f', needle(run[k + 1]), kTail);
+      }
     }
+    const int last = needle(run.back());
+    if (holder == kNone) {
+      front_[last].assign(1, kTail);
+      return;
+    }
+    move(last, needle(holder));
+    // The chain's loop now belongs with the holder's loop.
+    for (int& t : front_[needle(holder)]) t = holder;
   }
 
   static constexpr int kNoNeedle = 1 << 30;

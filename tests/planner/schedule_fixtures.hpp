@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <ostream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -269,6 +270,93 @@ inline StitchMesh cover_like() {
     } else {
       b.add_row(0, knits(left_w));
       b.add_row(right_first, knits(right_w));
+    }
+  }
+  return b.mesh();
+}
+
+// A random shape for property tests: branches of the front that grow by
+// plain rows, random increases and decreases, short rows on one or both
+// sides, and splits into two branches; some branches stop (bound off).
+inline StitchMesh random_shape(std::uint32_t seed, int steps = 40) {
+  std::mt19937 rng(seed);
+  auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  const int width = uniform(4, 24);
+  Builder b(width);
+  struct Branch {
+    int width;
+    bool alive;
+  };
+  // The front, left to right: branches and gaps (widths of bound-off runs).
+  std::vector<Branch> parts{{width, true}};
+  auto first_segment = [&](std::size_t k) {
+    int n = 0;
+    for (std::size_t i = 0; i < k; ++i) n += parts[i].width;
+    return n;
+  };
+  for (int step = 0; step < steps; ++step) {
+    std::vector<std::size_t> alive;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      if (parts[i].alive) alive.push_back(i);
+    }
+    if (alive.empty()) break;
+    const std::size_t k =
+        alive[static_cast<std::size_t>(uniform(0, static_cast<int>(alive.size()) - 1))];
+    const int w = parts[k].width;
+    const int first = first_segment(k);
+    const int op = uniform(0, 9);
+    if (op <= 2) {
+      b.add_row(first, knits(w));
+    } else if (op <= 4) {
+      // Random shaping: each face may increase or decrease.
+      std::vector<FaceSpec> specs;
+      int used = 0;
+      if (uniform(0, 1) == 0 && w < 40) {
+        // Lean: widen on one side only, towards the neighbouring branches.
+        specs.assign(static_cast<std::size_t>(w), FaceSpec{});
+        (uniform(0, 1) == 0 ? specs.front() : specs.back()).out = 2;
+        used = w;
+      }
+      while (used < w) {
+        FaceSpec f;
+        const int r = uniform(0, 9);
+        if (r == 0 && used + 2 <= w && w - 1 >= 3) f.in = 2;
+        if (r == 1 && w < 40) f.out = 2;
+        used += f.in;
+        specs.push_back(f);
+      }
+      int made = 0;
+      for (const FaceSpec& f : specs) made += f.out;
+      b.add_row(first, specs);
+      parts[k].width = made;
+    } else if (op <= 6 && w >= 6) {
+      const bool both = uniform(0, 1) == 1;
+      const int inset = uniform(1, (w - 2) / 2 - (both ? 1 : 0) > 1 ? (w - 2) / 2 - 1 : 1);
+      if (both) {
+        b.add_row(first + inset, knits(w - 2 * inset), true, true);
+      } else if (uniform(0, 1) == 0) {
+        b.add_row(first, knits(w - inset), false, true);
+      } else {
+        b.add_row(first + inset, knits(w - inset), true, false);
+      }
+      b.add_row(first, knits(w));
+    } else if (op <= 8 && w >= 8) {
+      // Split: left and right branches with a bound-off gap between.
+      const int gap = uniform(0, 2);
+      const int left = uniform(3, w - gap - 3);
+      const int right = w - gap - left;
+      b.add_row(first, knits(left));
+      b.add_row(first + left + gap, knits(right));
+      std::vector<Branch> replaced{{left, true}};
+      if (gap > 0) replaced.push_back({gap, false});
+      replaced.push_back({right, true});
+      parts.erase(parts.begin() + static_cast<std::ptrdiff_t>(k));
+      parts.insert(parts.begin() + static_cast<std::ptrdiff_t>(k), replaced.begin(),
+                   replaced.end());
+    } else if (alive.size() > 1) {
+      parts[k].alive = false;  // this branch ends here
+    } else {
+      b.add_row(first, knits(w));
     }
   }
   return b.mesh();

@@ -330,6 +330,39 @@ TEST(KnitoutEmitTest, YarnVisitsOneLoopPerSubdividedFaceInTracedOrder) {
   }
 }
 
+TEST(KnitoutEmitTest, RandomShapesGiveValidKnitout) {
+  // 150 fixed-seed random shapes (shaping, short rows, branches), both
+  // patterns: every piece passes the bed checker and has one knit per
+  // subdivided face.
+  int pieces = 0, cut = 0, branched = 0;
+  for (std::uint32_t seed = 1; seed <= 150; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const StitchMesh mesh = fx::random_shape(seed);
+    Schedule s;
+    ASSERT_NO_THROW(s = run(mesh, 10, seed, 1));
+    cut += s.cuts > 0 ? 1 : 0;
+    branched += s.patches.size() > 1 ? 1 : 0;
+    for (StitchPattern pattern : {StitchPattern::Plain, StitchPattern::Seed}) {
+      EmitParams params;
+      params.pattern = pattern;
+      for (std::size_t p = 0; p < s.pieces.size(); ++p) {
+        EmittedPiece piece;
+        ASSERT_NO_THROW(piece = emit_piece(mesh, s, p, params)) << "piece " << p;
+        knitout::DiagnosticSink sink;
+        const auto check = testing::check_bed(knitout::parse_string(piece.knitout, "r", sink));
+        ASSERT_FALSE(sink.has_errors());
+        ASSERT_TRUE(check.errors.empty()) << "piece " << p << ": " << check.errors.front();
+        EXPECT_EQ(static_cast<int>(piece.trace.size()), subdivided_faces(mesh, s, s.pieces[p]));
+        ++pieces;
+      }
+    }
+  }
+  // The cases exercise branching and cuts, not only plain sheets.
+  EXPECT_GT(branched, 100);
+  EXPECT_GT(cut, 0);
+  EXPECT_GT(pieces, 300);
+}
+
 TEST(KnitoutEmitTest, CarrierComesInWithTheHookAndLeavesWithIt) {
   const StitchMesh mesh = fx::rectangle(6, 3);
   const Schedule s = run(mesh);
