@@ -45,9 +45,9 @@ void bm_schedule_and_write(benchmark::State& state, planner::StitchPattern patte
     total = {};
     for (std::size_t p = 0; p < s.pieces.size(); ++p) {
       const planner::EmittedPiece piece = planner::emit_piece(cover(), s, p, emit);
-      const std::string failure = knitout::write_file_atomically(
-          (dir / ("piece-" + std::to_string(p + 1) + ".k")).string(),
-          [&](std::ostream& out) { out << piece.knitout; });
+      const std::string failure =
+          knitout::write_file_atomically((dir / ("piece-" + std::to_string(p + 1) + ".k")).string(),
+                                         [&](std::ostream& out) { out << piece.knitout; });
       if (!failure.empty()) state.SkipWithError(failure.c_str());
       total.passes += piece.stats.passes;
       total.transfers += piece.stats.transfers;

@@ -135,8 +135,8 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     const std::string name = "piece-" + std::to_string(p + 1);
     const std::string path = (folder / "pieces" / (name + ".k")).string();
-    const std::string failure = knitout::write_file_atomically(
-        path, [&](std::ostream& out) { out << pieces[p].knitout; });
+    const std::string failure =
+        knitout::write_file_atomically(path, [&](std::ostream& out) { out << pieces[p].knitout; });
     if (!failure.empty()) {
       context.err << "wearknit schedule: " << failure << '\n';
       return kExitUsage;
@@ -171,8 +171,8 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
         continue;
       edges.push_back({e.lower, e.upper});
     }
-    cuts.push_back({{"label", "sew"}, {"lower_row", lower}, {"upper_row", upper},
-                    {"faces", edges}});
+    cuts.push_back(
+        {{"label", "sew"}, {"lower_row", lower}, {"upper_row", upper}, {"faces", edges}});
   }
   auto cuts_json = read_object(folder / "cuts.json");
   if (!cuts_json) {
@@ -218,8 +218,8 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
                 << " rows, " << schedule.patches.size() << " patches; " << schedule.trials.size()
                 << " orders tried, best has " << schedule.cuts << " cut"
                 << (schedule.cuts == 1 ? "" : "s") << "; " << pieces.size() << " piece"
-                << (pieces.size() == 1 ? "" : "s") << " in " << (folder / "pieces").string()
-                << " (" << pattern_name << ", about " << static_cast<int>(total / 60 + 0.5)
+                << (pieces.size() == 1 ? "" : "s") << " in " << (folder / "pieces").string() << " ("
+                << pattern_name << ", about " << static_cast<int>(total / 60 + 0.5)
                 << " min on the machine)\n";
   }
   return kExitOk;
