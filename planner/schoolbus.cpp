@@ -38,6 +38,26 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
     }
     if (aboard.empty()) break;
     for (std::size_t i : aboard) plan.push_back({0, true, riders[i].at, riders[i].at});
+    // A rider going further than the racking limit gets off at the furthest
+    // step whose needle is free and is nobody's destination.
+    std::map<std::size_t, int> stop_step;
+    for (std::size_t i : aboard) {
+      const int left = riders[i].to - riders[i].at;
+      if (std::abs(left) <= max_racking) continue;
+      const int sign = left > 0 ? 1 : -1;
+      for (int step = max_racking; step >= 1; --step) {
+        const int stop = riders[i].at + sign * step;
+        bool taken = occupied(stop);
+        for (const Rider& other : riders) taken = taken || other.to == stop;
+        if (!taken) {
+          stop_step[i] = step;
+          break;
+        }
+      }
+      if (stop_step.count(i) == 0)
+        throw std::logic_error("schoolbus: no free needle within reach of f" +
+                               std::to_string(riders[i].at));
+    }
     // Destinations and stops already taken this round, to keep riders apart.
     std::map<int, int> landing;  // front needle -> final destination of who got off there
     for (int sign : {+1, -1}) {
@@ -47,8 +67,8 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
           Rider& rider = riders[i];
           const int left = rider.to - rider.at;
           if (left == 0 || (left > 0) != (sign > 0)) continue;
-          const bool last_stop = step == max_racking;
-          if (left != r && !(last_stop && std::abs(left) > max_racking)) continue;
+          const auto chosen = stop_step.find(i);
+          if (left != r && !(chosen != stop_step.end() && chosen->second == step)) continue;
           const int stop = rider.at + r;
           if (stop != rider.to) {
             // An intermediate stop must be empty and not anyone's stop.

@@ -6,8 +6,9 @@
 // the bed racks one way step by step (1, 2, ... up to the machine's limit)
 // and each loop gets off onto the front bed when the racking equals what it
 // still has to travel; then the other way (-1, -2, ...). A loop that has to
-// travel further than the racking limit gets off at the limit and boards
-// again in the next round. Loops that share a destination stack there (a
+// travel further than the racking limit gets off as far as it can (at the
+// limit, or nearer when that needle holds a loop or is someone's
+// destination) and boards again in the next round. Loops that share a destination stack there (a
 // decrease). Each loop is transferred twice per round, and neighbours on
 // the bus keep their spacing, so the yarn between them is never stretched
 // more than by one racking step at a time.
@@ -17,7 +18,7 @@
 // says whether front needle n holds a loop that does not move; a loop may
 // get off only at its destination when that is occupied (stacking), never
 // at an intermediate stop. Throws std::logic_error when no plan exists
-// under these rules (an intermediate stop is occupied).
+// under these rules (no free intermediate stop within reach).
 #pragma once
 
 #include <functional>

@@ -233,10 +233,19 @@ TEST(SchoolbusTest, NothingToDoMeansNoTransfers) {
   EXPECT_TRUE(schoolbus({{3, 3}, {4, 4}}, [](int) { return false; }).empty());
 }
 
-TEST(SchoolbusTest, RefusesAnIntermediateStopThatHoldsALoop) {
-  // 12 needles to the right stops at +8, where a loop that stays sits.
-  EXPECT_THROW(schoolbus({{0, 12}}, [](int n) { return n == 8; }), std::logic_error);
-  EXPECT_NO_THROW(schoolbus({{0, 12}}, [](int n) { return n == 9; }));
+TEST(SchoolbusTest, StopsShortOfAnIntermediateNeedleThatHoldsALoop) {
+  // 12 needles to the right would stop at +8, where a loop that stays sits:
+  // the rider gets off at +7 instead and goes on from there.
+  const auto plan = schoolbus({{0, 12}}, [](int n) { return n == 8; });
+  const Replay r = replay({{0, 1}, {8, 1}}, plan);
+  EXPECT_TRUE(r.errors.empty());
+  EXPECT_EQ(r.front, (std::map<int, int>{{8, 1}, {12, 1}}));
+  EXPECT_TRUE(std::any_of(plan.begin(), plan.end(),
+                          [](const Transfer& t) { return !t.to_back && t.front == 7; }));
+}
+
+TEST(SchoolbusTest, RefusesWhenNoIntermediateNeedleIsFree) {
+  EXPECT_THROW(schoolbus({{0, 12}}, [](int n) { return n >= 1 && n <= 8; }), std::logic_error);
 }
 
 // ---- knitout (§7.4-7.5) ----

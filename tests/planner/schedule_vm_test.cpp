@@ -26,7 +26,7 @@ TEST(ScheduleVmTest, EveryPieceValidatesAndKnitsItsFacesInTracedOrder) {
 #ifndef WEARKNIT_HAVE_VM
   GTEST_SKIP() << "the needle-bed VM (simulators/bed) is not in this build";
 #else
-  std::vector<std::pair<std::string, StitchMesh>> shapes = {
+  std::vector<std::pair<std::string, StitchMesh> > shapes = {
       {"rectangle", fx::rectangle(10, 6)},
       {"trapezoid", fx::trapezoid(16, 10)},
       {"widening", fx::widening(6, 10)},
