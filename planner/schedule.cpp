@@ -76,6 +76,10 @@ FaceSides classify_sides(const StitchFace& face, std::size_t f) {
   return sides;
 }
 
+// How often a random order takes the patch unlocked last (depth first)
+// rather than any ready patch.
+constexpr double kDepthFirstChance = 1.0;
+
 std::uint64_t mix(std::uint64_t seed, std::uint64_t trial) {
   // splitmix64 of the pair: independent streams per trial.
   std::uint64_t z = seed * 0x9E3779B97F4A7C15ULL + trial + 0x632BE59BD9B4E019ULL;
@@ -96,6 +100,7 @@ void build_rows(const StitchMesh& mesh, Schedule& s) {
   const std::size_t nf = mesh.faces.size();
   s.faces.assign(nf, FaceLinks{});
   s.edges.clear();
+  s.wale_seams.clear();
   std::vector<FaceSides> sides(nf);
   std::unordered_map<std::uint64_t, std::vector<std::pair<int, int>>> by_key;
   for (std::size_t f = 0; f < nf; ++f) {
@@ -172,20 +177,25 @@ void build_rows(const StitchMesh& mesh, Schedule& s) {
     if (sides[f].right_wale == kNone) continue;
     auto [g, gs] = other_side(static_cast<int>(f), sides[f].right_wale);
     if (g == kNone) continue;
-    if (sides[static_cast<std::size_t>(g)].left_wale != gs)
-      throw ScheduleError(face_name(f) + ": its right wale side meets " +
-                          face_name(static_cast<std::size_t>(g)) +
-                          " on a side that is not that face's left wale side");
+    if (sides[static_cast<std::size_t>(g)].left_wale != gs) {
+      // Both faces see the side as their right (or the other's course runs
+      // the other way): they cannot be knit in one row. The side is left
+      // open, a seam to sew.
+      const std::pair<int, int> seam{std::min(static_cast<int>(f), g),
+                                     std::max(static_cast<int>(f), g)};
+      if (std::find(s.wale_seams.begin(), s.wale_seams.end(), seam) == s.wale_seams.end())
+        s.wale_seams.push_back(seam);
+      continue;
+    }
     s.faces[f].right = g;
     s.faces[static_cast<std::size_t>(g)].left = static_cast<int>(f);
   }
   for (std::size_t f = 0; f < nf; ++f) {
     if (sides[f].left_wale == kNone) continue;
     auto [g, gs] = other_side(static_cast<int>(f), sides[f].left_wale);
-    if (g != kNone && s.faces[f].left != g)
-      throw ScheduleError(face_name(f) + ": its left wale side meets " +
-                          face_name(static_cast<std::size_t>(g)) +
-                          " on a side that is not that face's right wale side");
+    if (g != kNone && s.faces[f].left != g && sides[static_cast<std::size_t>(g)].right_wale != gs &&
+        static_cast<int>(f) < g)
+      s.wale_seams.emplace_back(static_cast<int>(f), g);  // two left sides meet
   }
   // §7.1, Fig. 8b: rows are maximal runs of wale-connected faces.
   s.face_row.assign(nf, kNone);
@@ -485,16 +495,23 @@ std::vector<int> random_patch_order(const Schedule& s, std::uint64_t seed, std::
   for (std::size_t p = 0; p < np; ++p) {
     if (indeg[p] == 0) ready.push_back(static_cast<int>(p));
   }
+  std::shuffle(ready.begin(), ready.end(), rng);
+  // Mostly depth first: a patch that just became ready (one the last patch
+  // unlocked) is knit next, so a branch is finished before another starts
+  // and loops are held for a short time; now and then any ready patch.
+  std::bernoulli_distribution depth_first(kDepthFirstChance);
   while (!ready.empty()) {
-    std::uniform_int_distribution<std::size_t> pick(0, ready.size() - 1);
-    const std::size_t i = pick(rng);
+    std::size_t i = ready.size() - 1;
+    if (!depth_first(rng)) i = std::uniform_int_distribution<std::size_t>(0, ready.size() - 1)(rng);
     const int p = ready[i];
-    ready[i] = ready.back();
-    ready.pop_back();
+    ready.erase(ready.begin() + static_cast<std::ptrdiff_t>(i));
     order.push_back(p);
+    std::vector<int> unlocked;
     for (int b : succ[static_cast<std::size_t>(p)]) {
-      if (--indeg[static_cast<std::size_t>(b)] == 0) ready.push_back(b);
+      if (--indeg[static_cast<std::size_t>(b)] == 0) unlocked.push_back(b);
     }
+    std::shuffle(unlocked.begin(), unlocked.end(), rng);
+    ready.insert(ready.end(), unlocked.begin(), unlocked.end());
   }
   if (order.size() != np) throw std::logic_error("random_patch_order: the patch graph has a cycle");
   return order;

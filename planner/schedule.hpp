@@ -84,6 +84,10 @@ struct Schedule {
   std::vector<CourseEdge> edges;
   std::vector<int> face_row;
   std::vector<Row> rows;
+  // Wale sides shared by two faces whose rows run opposite ways (both see
+  // the side as their right, or both as their left): left open as seams to
+  // sew, as (face, face).
+  std::vector<std::pair<int, int>> wale_seams;
   // Row graph (§7.1, Fig. 8c): successors of each row, and the edges left once
   // redundant paths are removed (Fig. 8d).
   std::vector<std::vector<int>> row_successors;

@@ -1,7 +1,9 @@
 #include "planner/schoolbus.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +33,7 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
   std::vector<Rider> riders;
   for (const auto& [from, to] : to_of) riders.push_back({from, to});
   std::vector<Transfer> plan;
+  std::set<int> arrived;  // front needles holding riders that reached their destination
   while (true) {
     std::vector<std::size_t> aboard;
     for (std::size_t i = 0; i < riders.size(); ++i) {
@@ -38,8 +41,13 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
     }
     if (aboard.empty()) break;
     for (std::size_t i : aboard) plan.push_back({0, true, riders[i].at, riders[i].at});
-    // A rider going further than the racking limit gets off at the furthest
-    // step whose needle is free and is nobody's destination.
+    // Needles riders get off at this round: their destinations when within
+    // reach, else the furthest needle within reach that is empty (no loop
+    // that stays, no rider that arrived) and that nobody else gets off at.
+    std::set<int> reserved;
+    for (std::size_t i : aboard) {
+      if (std::abs(riders[i].to - riders[i].at) <= max_racking) reserved.insert(riders[i].to);
+    }
     std::map<std::size_t, int> stop_step;
     for (std::size_t i : aboard) {
       const int left = riders[i].to - riders[i].at;
@@ -47,19 +55,16 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
       const int sign = left > 0 ? 1 : -1;
       for (int step = max_racking; step >= 1; --step) {
         const int stop = riders[i].at + sign * step;
-        bool taken = occupied(stop);
-        for (const Rider& other : riders) taken = taken || other.to == stop;
-        if (!taken) {
-          stop_step[i] = step;
-          break;
-        }
+        if (occupied(stop) || arrived.count(stop) != 0 || reserved.count(stop) != 0) continue;
+        stop_step[i] = step;
+        reserved.insert(stop);
+        break;
       }
       if (stop_step.count(i) == 0)
         throw std::logic_error("schoolbus: no free needle within reach of f" +
                                std::to_string(riders[i].at));
     }
-    // Destinations and stops already taken this round, to keep riders apart.
-    std::map<int, int> landing;  // front needle -> final destination of who got off there
+    std::map<int, int> landing;  // front needle -> destination of who got off there
     for (int sign : {+1, -1}) {
       for (int step = 1; step <= max_racking; ++step) {
         const int r = sign * step;
@@ -70,19 +75,13 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
           const auto chosen = stop_step.find(i);
           if (left != r && !(chosen != stop_step.end() && chosen->second == step)) continue;
           const int stop = rider.at + r;
-          if (stop != rider.to) {
-            // An intermediate stop must be empty and not anyone's stop.
-            if (occupied(stop) || landing.count(stop) != 0)
-              throw std::logic_error("schoolbus: intermediate stop f" + std::to_string(stop) +
-                                     " is taken");
-          } else {
-            auto it = landing.find(stop);
-            if (it != landing.end() && it->second != rider.to)
-              throw std::logic_error("schoolbus: f" + std::to_string(stop) + " is taken");
-          }
+          auto it = landing.find(stop);
+          if (it != landing.end() && (it->second != rider.to || stop != rider.to))
+            throw std::logic_error("schoolbus: f" + std::to_string(stop) + " is taken");
           landing[stop] = rider.to;
           plan.push_back({r, false, stop, rider.at});
           rider.at = stop;
+          if (rider.at == rider.to) arrived.insert(stop);
         }
       }
     }

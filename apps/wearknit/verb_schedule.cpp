@@ -200,6 +200,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
       {"cuts", schedule.cuts},
       {"rows", schedule.rows.size()},
       {"patches", schedule.patches.size()},
+      {"wale_seams", schedule.wale_seams.size()},
       {"pieces", piece_list},
       {"time_s", seconds}};
   for (const auto& [name, value] :

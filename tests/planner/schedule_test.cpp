@@ -166,6 +166,17 @@ TEST(ScheduleTest, AcceptsTheSameFaceWithItsRoles) {
   EXPECT_NO_THROW(run(mesh));
 }
 
+TEST(ScheduleTest, FacesWhoseRowsRunOppositeWaysMeetAtASeam) {
+  // Face 1 turned upside down: its wale side towards face 0 is its right
+  // side too, so the two cannot share a row; the side stays open.
+  StitchMesh mesh = fx::rectangle(2, 1);
+  mesh.faces[1].roles = {EdgeRole::CourseOut, EdgeRole::Wale, EdgeRole::CourseIn, EdgeRole::Wale};
+  const Schedule s = run(mesh);
+  EXPECT_EQ(s.wale_seams, (std::vector<std::pair<int, int>>{{0, 1}}));
+  EXPECT_EQ(s.rows.size(), 2u);
+  EXPECT_TRUE(run(fx::rectangle(2, 1)).wale_seams.empty());
+}
+
 TEST(ScheduleTest, RejectsVertexOutOfRange) {
   StitchMesh mesh = fx::rectangle(2, 1);
   mesh.faces[0].vertices[2] = 999;
