@@ -20,7 +20,9 @@ struct Case {
 };
 
 // Shown by GoogleTest (and ctest) in place of the case's bytes.
-void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.name;
+}
 
 std::string with_nul() {
   std::string s = "knit + f1";
