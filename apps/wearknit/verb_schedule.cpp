@@ -1,18 +1,25 @@
 // wearknit schedule: the flat-sheet scheduler (paper §7) on a plan folder's
-// stitch-mesh.smobj; writes pieces/piece-N.k, the scheduling cuts into
-// cuts.json and the figures into report.json (both merged with what is there).
+// stitch-mesh.smobj; every piece is run through the needle-bed VM, then
+// pieces/piece-N.k and its bed view pieces/piece-N.svg are written, the
+// scheduling cuts go into cuts.json and the figures (time estimates from the
+// VM) into report.json (both merged with what is there).
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 
 #include "apps/wearknit/cli.hpp"
 #include "knitout/output_file.hpp"
+#include "knitout/parser.hpp"
 #include "planner/knitout_emit.hpp"
 #include "planner/schedule.hpp"
 #include "planner/smobj_read.hpp"
+#include "simulators/bed/bed_view.hpp"
+#include "simulators/bed/machine.hpp"
+#include "simulators/bed/profile.hpp"
 
 namespace wearknit::cli {
 
@@ -124,6 +131,50 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+  // Every piece runs through the needle-bed VM before anything is written:
+  // an error there is a bug of the scheduler, never the user's.
+  struct Judged {
+    bed::Stats stats;
+    std::size_t warnings = 0;
+    bed::BedView view;
+    std::unique_ptr<knitout::Program> program;
+    std::unique_ptr<knitout::DiagnosticSink> sink;
+    std::unique_ptr<bed::Machine> machine;
+  };
+  std::vector<Judged> judged(pieces.size());
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    Judged& j = judged[p];
+    const std::string name = "piece-" + std::to_string(p + 1) + ".k";
+    j.sink = std::make_unique<knitout::DiagnosticSink>();
+    j.program =
+        std::make_unique<knitout::Program>(knitout::parse_string(pieces[p].knitout, name, *j.sink));
+    std::optional<std::size_t> header_carriers;
+    if (auto carriers = j.program->header("Carriers")) {
+      std::istringstream names{std::string(*carriers)};
+      std::string word;
+      std::size_t n = 0;
+      while (names >> word) ++n;
+      header_carriers = n;
+    }
+    bed::MachineOptions machine_options;
+    machine_options.observer = &j.view;
+    j.machine =
+        std::make_unique<bed::Machine>(bed::default_profile(), *j.sink, name, j.program->carriers,
+                                       header_carriers, machine_options);
+    j.machine->check_headers(j.program->headers);
+    for (const knitout::Instruction& instruction : j.program->instructions)
+      j.machine->step(instruction);
+    j.machine->finish(static_cast<std::uint32_t>(pieces[p].stats.lines));
+    if (j.sink->has_errors()) {
+      context.err << "wearknit schedule: internal error: the needle-bed VM rejects " << name
+                  << ":\n";
+      knitout::print_text(context.err, j.sink->sorted());
+      return kExitUsage;
+    }
+    j.stats = j.machine->stats();
+    j.warnings = j.sink->warning_count();
+  }
+
   // Pieces.
   std::error_code ec;
   fs::create_directories(folder / "pieces", ec);
@@ -139,6 +190,13 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
         knitout::write_file_atomically(path, [&](std::ostream& out) { out << pieces[p].knitout; });
     if (!failure.empty()) {
       context.err << "wearknit schedule: " << failure << '\n';
+      return kExitUsage;
+    }
+    const std::string view_path = (folder / "pieces" / (name + ".svg")).string();
+    const std::string view_failure =
+        judged[p].view.write(view_path, *judged[p].machine, name + ".k");
+    if (!view_failure.empty()) {
+      context.err << "wearknit schedule: " << view_failure << '\n';
       return kExitUsage;
     }
     const planner::PieceStats& st = pieces[p].stats;
@@ -157,7 +215,10 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
                           {"width_needles", st.width_needles},
                           {"yarn_ins", st.yarn_ins},
                           {"lines", st.lines},
-                          {"estimated_knit_time_s", st.knit_time_s}});
+                          {"bed_view", "pieces/" + name + ".svg"},
+                          {"vm_warnings", judged[p].warnings},
+                          {"estimated_knit_time_s", judged[p].stats.estimated_time_s},
+                          {"planner_time_model_s", st.knit_time_s}});
   }
 
   // Cuts from scheduling: seams labelled sew (§7.3).
@@ -214,7 +275,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   }
   if (!values.count("quiet")) {
     double total = 0;
-    for (const auto& piece : pieces) total += piece.stats.knit_time_s;
+    for (const auto& j : judged) total += j.stats.estimated_time_s;
     context.out << smobj << ": " << mesh.faces.size() << " stitches, " << schedule.rows.size()
                 << " rows, " << schedule.patches.size() << " patches; " << schedule.trials.size()
                 << " orders tried, best has " << schedule.cuts << " cut"

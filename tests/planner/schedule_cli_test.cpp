@@ -83,6 +83,10 @@ TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
   EXPECT_EQ(report["schedule"]["cuts"], 0);
   ASSERT_EQ(report["schedule"]["pieces"].size(), 1u);
   EXPECT_GT(report["schedule"]["pieces"][0]["estimated_knit_time_s"].get<double>(), 0);
+  EXPECT_EQ(report["schedule"]["pieces"][0]["vm_warnings"], 0);
+  EXPECT_EQ(report["schedule"]["pieces"][0]["bed_view"], "pieces/piece-1.svg");
+  EXPECT_NE(wearknit::test::read_file(dir / "pieces" / "piece-1.svg").find("<svg"),
+            std::string::npos);
   const std::string k = wearknit::test::read_file(dir / "pieces" / "piece-1.k");
   knitout::DiagnosticSink sink;
   const auto program = knitout::parse_string(k, "piece-1.k", sink);
