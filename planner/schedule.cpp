@@ -76,10 +76,6 @@ FaceSides classify_sides(const StitchFace& face, std::size_t f) {
   return sides;
 }
 
-// How often a random order takes the patch unlocked last (depth first)
-// rather than any ready patch.
-constexpr double kDepthFirstChance = 1.0;
-
 std::uint64_t mix(std::uint64_t seed, std::uint64_t trial) {
   // splitmix64 of the pair: independent streams per trial.
   std::uint64_t z = seed * 0x9E3779B97F4A7C15ULL + trial + 0x632BE59BD9B4E019ULL;
@@ -265,7 +261,8 @@ void build_patches(Schedule& s) {
     throw ScheduleError(
         "the row graph has a cycle: course directions of the stitch mesh disagree (" +
         std::to_string(nr - topo.size()) + " rows on cycles)");
-  std::vector<int> topo_index(nr);
+  std::vector<int>& topo_index = s.row_topo_index;
+  topo_index.assign(nr, 0);
   for (std::size_t i = 0; i < nr; ++i)
     topo_index[static_cast<std::size_t>(topo[i])] = static_cast<int>(i);
   // Fig. 8d: an edge u->v is redundant when v is reached from u another way
@@ -496,13 +493,25 @@ std::vector<int> random_patch_order(const Schedule& s, std::uint64_t seed, std::
     if (indeg[p] == 0) ready.push_back(static_cast<int>(p));
   }
   std::shuffle(ready.begin(), ready.end(), rng);
-  // Mostly depth first: a patch that just became ready (one the last patch
-  // unlocked) is knit next, so a branch is finished before another starts
-  // and loops are held for a short time; now and then any ready patch.
-  std::bernoulli_distribution depth_first(kDepthFirstChance);
+  // Two rules, mixed in a proportion drawn per trial so the trials spread
+  // from one extreme to the other: depth first (the patch the last one just
+  // unlocked is knit next, so a branch is finished before another starts and
+  // its loops are held briefly) and lowest first (the ready patch lowest in
+  // the row graph's topological order, so the branches beside a merge climb
+  // together).
+  std::bernoulli_distribution depth_first(std::uniform_real_distribution<double>(0, 1)(rng));
   while (!ready.empty()) {
     std::size_t i = ready.size() - 1;
-    if (!depth_first(rng)) i = std::uniform_int_distribution<std::size_t>(0, ready.size() - 1)(rng);
+    if (!depth_first(rng)) {
+      i = 0;
+      auto height = [&](int q) {
+        const auto first = s.patches[static_cast<std::size_t>(q)].rows.front();
+        return s.row_topo_index[static_cast<std::size_t>(first)];
+      };
+      for (std::size_t k = 1; k < ready.size(); ++k) {
+        if (height(ready[k]) < height(ready[i])) i = k;
+      }
+    }
     const int p = ready[i];
     ready.erase(ready.begin() + static_cast<std::ptrdiff_t>(i));
     order.push_back(p);

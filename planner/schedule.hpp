@@ -92,6 +92,9 @@ struct Schedule {
   // redundant paths are removed (Fig. 8d).
   std::vector<std::vector<int>> row_successors;
   std::vector<std::vector<int>> reduced_successors;
+  // Each row's place in a topological order of the row graph (Kahn's,
+  // lowest row number first).
+  std::vector<int> row_topo_index;
   std::vector<Patch> patches;
   std::vector<int> patch_order;     // §7.3: the order kept
   std::vector<TrialResult> trials;  // every order tried, in trial order
