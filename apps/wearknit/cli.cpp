@@ -28,6 +28,8 @@ const std::vector<Verb>& verbs() {
        "[--frames OUT/]",
        "label each cut-arc sew or lace by stripping the garment off the wearer (§5)",
        run_wearability},
+      {"schedule", "schedule DIR [--trials N | --time-budget S] [--pattern plain|seed] [--seed N]",
+       "knitting schedule and knitout pieces for a plan folder's stitch mesh (§7)", run_schedule},
   };
   return kVerbs;
 }

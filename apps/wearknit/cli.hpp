@@ -61,5 +61,6 @@ int run_simulate(const std::vector<std::string>& args, Context& context);
 int run_dat(const std::vector<std::string>& args, Context& context);
 int run_dat_info(const std::vector<std::string>& args, Context& context);
 int run_wearability(const std::vector<std::string>& args, Context& context);
+int run_schedule(const std::vector<std::string>& args, Context& context);
 
 }  // namespace wearknit::cli

@@ -1,0 +1,139 @@
+// planner::Schedule: the flat-sheet knit schedule of paper §7, from a
+// planner::StitchMesh.
+//
+// Stages (each a free function, run in this order by `schedule`):
+//   build_rows          §7.1, Fig. 8b: faces into rows (wale-connected, left to right)
+//   build_patches       §7.1, Fig. 8c-f: row graph, redundant paths removed,
+//                       serial chains collapsed into patches
+//   assign_needles      §7.2: needles per course edge, per patch from its bottom
+//                       row, then patches shifted to agree along their boundaries
+//   choose_order        §7.3: random patch orders simulated on the needle bed;
+//                       each overlap adds a cut; the order with fewest cuts wins
+//   make_pieces         the connected parts left once the cuts are made
+// Tracing, subdivision and knitout are in knitout_emit.hpp (§7.4-7.5).
+//
+// Needles are in global front-bed indices (may be negative until a piece is
+// written; the emitter shifts each piece to start at needle 1).
+// Bad input (faces whose sides do not make a stitch mesh the scheduler can
+// read) throws ScheduleError naming the face; broken invariants throw
+// std::logic_error.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "planner/stitch_mesh.hpp"
+
+namespace planner {
+
+class ScheduleError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+inline constexpr int kNone = -1;
+
+// One loop-carrying course edge of the stitch mesh: made by `lower` (its
+// CourseOut side), knit through by `upper` (its CourseIn side). kNone on a
+// side means the edge is on the mesh boundary there: cast on below, bound off
+// above.
+struct CourseEdge {
+  int lower = kNone;
+  int upper = kNone;
+  int needle = 0;    // §7.2: where the loop sits once `lower` is knit (global)
+  bool cut = false;  // §7.3: cut to avoid an overlap (a seam labelled sew)
+};
+
+struct FaceLinks {
+  std::vector<int> in;   // course edges entering the face, left to right
+  std::vector<int> out;  // course edges leaving the face, left to right
+  int left = kNone;      // neighbouring face in the row across a wale side
+  int right = kNone;
+};
+
+struct Row {
+  std::vector<int> faces;  // left to right
+  int patch = kNone;
+  bool cycle_broken = false;  // the row closed on itself and was opened (a cut)
+};
+
+struct Patch {
+  std::vector<int> rows;  // bottom to top: the order they are knit in
+};
+
+struct TrialResult {
+  std::uint64_t trial = 0;
+  int cuts = 0;
+};
+
+struct ScheduleParams {
+  int trials = 100;          // random knitting orders tried (§7.3)
+  double time_budget_s = 0;  // > 0: try orders until this much time has passed instead
+  std::uint64_t seed = 1;    // every random choice derives from it and the trial number
+  int threads = 0;           // 0: all cores
+};
+
+struct Piece {
+  std::vector<int> rows;  // in knitting order
+};
+
+struct Schedule {
+  std::vector<FaceLinks> faces;
+  std::vector<CourseEdge> edges;
+  std::vector<int> face_row;
+  std::vector<Row> rows;
+  // Wale sides shared by two faces whose rows run opposite ways (both see
+  // the side as their right, or both as their left): left open as seams to
+  // sew, as (face, face).
+  std::vector<std::pair<int, int>> wale_seams;
+  // Row graph (§7.1, Fig. 8c): successors of each row, and the edges left once
+  // redundant paths are removed (Fig. 8d).
+  std::vector<std::vector<int>> row_successors;
+  std::vector<std::vector<int>> reduced_successors;
+  // Each row's place in a topological order of the row graph (Kahn's,
+  // lowest row number first).
+  std::vector<int> row_topo_index;
+  std::vector<Patch> patches;
+  std::vector<int> patch_order;     // §7.3: the order kept
+  std::vector<TrialResult> trials;  // every order tried, in trial order
+  std::uint64_t best_trial = 0;
+  int cuts = 0;                               // cuts of the kept order (row pairs separated)
+  std::vector<std::pair<int, int>> cut_rows;  // (lower row, upper row) per cut
+  std::vector<Piece> pieces;
+};
+
+// §7.1, Fig. 8b: course edges, wale neighbours and rows. Throws ScheduleError
+// for faces the scheduler cannot read (no course edge in or out, sides shared
+// with mismatched roles, vertex indices out of range).
+void build_rows(const StitchMesh& mesh, Schedule& schedule);
+
+// §7.1, Fig. 8c-f. Throws ScheduleError when the row graph has a cycle (the
+// mesh's course directions are inconsistent).
+void build_patches(Schedule& schedule);
+
+// §7.2. Deterministic.
+void assign_needles(const StitchMesh& mesh, Schedule& schedule);
+
+// §7.3: simulate one order; returns the row pairs that must be cut. `order`
+// is a topological order of the patches.
+std::vector<std::pair<int, int>> simulate_order(const Schedule& schedule,
+                                                const std::vector<int>& order);
+
+// §7.3: a random topological order of the patches for `trial`.
+std::vector<int> random_patch_order(const Schedule& schedule, std::uint64_t seed,
+                                    std::uint64_t trial);
+
+// §7.3: tries orders (in parallel; the result depends only on params.seed and
+// the number of trials, not on the threads), keeps the one with fewest cuts
+// (ties: lowest trial number), marks the cut edges.
+void choose_order(Schedule& schedule, const ScheduleParams& params);
+
+// Connected parts once cuts are made; rows in knitting order.
+void make_pieces(Schedule& schedule);
+
+// All of the above.
+Schedule schedule(const StitchMesh& mesh, const ScheduleParams& params);
+
+}  // namespace planner

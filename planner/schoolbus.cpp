@@ -1,0 +1,92 @@
+#include "planner/schoolbus.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace planner {
+
+std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
+                                const std::function<bool(int)>& occupied, int max_racking) {
+  if (max_racking < 1) throw std::logic_error("schoolbus: racking limit below 1");
+  // One rider per needle that moves.
+  std::map<int, int> to_of;  // from -> to
+  for (const LoopMove& m : moves) {
+    if (m.from == m.to) continue;
+    auto [it, added] = to_of.emplace(m.from, m.to);
+    if (!added && it->second != m.to)
+      throw std::logic_error("schoolbus: two loops on needle " + std::to_string(m.from) +
+                             " want different needles");
+  }
+  for (const LoopMove& m : moves) {
+    if (m.from == m.to && to_of.count(m.from) != 0)
+      throw std::logic_error("schoolbus: a loop on needle " + std::to_string(m.from) +
+                             " both stays and moves");
+  }
+  struct Rider {
+    int at;
+    int to;
+  };
+  std::vector<Rider> riders;
+  for (const auto& [from, to] : to_of) riders.push_back({from, to});
+  std::vector<Transfer> plan;
+  std::set<int> arrived;  // front needles holding riders that reached their destination
+  while (true) {
+    std::vector<std::size_t> aboard;
+    for (std::size_t i = 0; i < riders.size(); ++i) {
+      if (riders[i].at != riders[i].to) aboard.push_back(i);
+    }
+    if (aboard.empty()) break;
+    for (std::size_t i : aboard) plan.push_back({0, true, riders[i].at, riders[i].at});
+    // Needles riders get off at this round: their destinations when within
+    // reach, else the furthest needle within reach that is empty (no loop
+    // that stays, no rider that arrived) and that nobody else gets off at.
+    std::set<int> reserved;
+    for (std::size_t i : aboard) {
+      if (std::abs(riders[i].to - riders[i].at) <= max_racking) reserved.insert(riders[i].to);
+    }
+    std::map<std::size_t, int> stop_step;
+    for (std::size_t i : aboard) {
+      const int left = riders[i].to - riders[i].at;
+      if (std::abs(left) <= max_racking) continue;
+      const int sign = left > 0 ? 1 : -1;
+      for (int step = max_racking; step >= 1; --step) {
+        const int stop = riders[i].at + sign * step;
+        if (occupied(stop) || arrived.count(stop) != 0 || reserved.count(stop) != 0) continue;
+        stop_step[i] = step;
+        reserved.insert(stop);
+        break;
+      }
+      if (stop_step.count(i) == 0)
+        throw std::logic_error("schoolbus: no free needle within reach of f" +
+                               std::to_string(riders[i].at));
+    }
+    std::map<int, int> landing;  // front needle -> destination of who got off there
+    for (int sign : {+1, -1}) {
+      for (int step = 1; step <= max_racking; ++step) {
+        const int r = sign * step;
+        for (std::size_t i : aboard) {
+          Rider& rider = riders[i];
+          const int left = rider.to - rider.at;
+          if (left == 0 || (left > 0) != (sign > 0)) continue;
+          const auto chosen = stop_step.find(i);
+          if (left != r && !(chosen != stop_step.end() && chosen->second == step)) continue;
+          const int stop = rider.at + r;
+          auto it = landing.find(stop);
+          if (it != landing.end() && (it->second != rider.to || stop != rider.to))
+            throw std::logic_error("schoolbus: f" + std::to_string(stop) + " is taken");
+          landing[stop] = rider.to;
+          plan.push_back({r, false, stop, rider.at});
+          rider.at = stop;
+          if (rider.at == rider.to) arrived.insert(stop);
+        }
+      }
+    }
+  }
+  return plan;
+}
+
+}  // namespace planner

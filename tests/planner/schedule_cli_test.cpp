@@ -1,0 +1,147 @@
+// End-to-end tests of `wearknit schedule` and of the .smobj reader it uses.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "knitout/parser.hpp"
+#include "planner/smobj_read.hpp"
+#include "tests/planner/bed_check.hpp"
+#include "tests/planner/schedule_fixtures.hpp"
+#include "tests/test_support.hpp"
+
+namespace planner {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path plan_folder(const StitchMesh& mesh, const std::string& prefix) {
+  const fs::path dir = wearknit::test::make_temp_dir(prefix);
+  std::ostringstream text;
+  fixtures::write_smobj_text(text, mesh);
+  wearknit::test::write_file(dir / "stitch-mesh.smobj", text.str());
+  return dir;
+}
+
+TEST(SmobjReadTest, ReadsBackFacesRolesAndTypes) {
+  const StitchMesh mesh = fixtures::short_rows(10, 2, true);
+  std::ostringstream text;
+  fixtures::write_smobj_text(text, mesh);
+  std::istringstream in(text.str());
+  knitout::DiagnosticSink sink;
+  const StitchMesh back = read_smobj(in, "m.smobj", sink);
+  ASSERT_FALSE(sink.has_errors());
+  ASSERT_EQ(back.faces.size(), mesh.faces.size());
+  ASSERT_EQ(back.positions.size(), mesh.positions.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    EXPECT_EQ(back.faces[f].vertices, mesh.faces[f].vertices);
+    EXPECT_EQ(back.faces[f].roles, mesh.faces[f].roles);
+    EXPECT_EQ(back.faces[f].type, mesh.faces[f].type);
+  }
+}
+
+TEST(SmobjReadTest, RejectsTypeOutsideTheLibrary) {
+  std::istringstream in("L knit -l y +l y\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nT 2\n");
+  knitout::DiagnosticSink sink;
+  read_smobj(in, "m.smobj", sink);
+  ASSERT_EQ(sink.error_count(), 1u);
+  EXPECT_EQ(knitout::format(sink.diagnostics()[0]),
+            "m.smobj:7: error: [S903] face type '2' is not an index into the 1-entry face library");
+}
+
+TEST(SmobjReadTest, AcceptsTheSameFaceWithTypeInsideTheLibrary) {
+  std::istringstream in("L knit -l y +l y\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nT 1\n");
+  knitout::DiagnosticSink sink;
+  const StitchMesh mesh = read_smobj(in, "m.smobj", sink);
+  EXPECT_FALSE(sink.has_errors());
+  ASSERT_EQ(mesh.faces.size(), 1u);
+  EXPECT_EQ(mesh.faces[0].type, FaceType::Knit);
+}
+
+TEST(SmobjReadTest, RejectsUndirectedLoopEdge) {
+  std::istringstream in("L knit l y +l y\n");
+  knitout::DiagnosticSink sink;
+  read_smobj(in, "m.smobj", sink);
+  ASSERT_EQ(sink.error_count(), 1u);
+  EXPECT_EQ(knitout::format(sink.diagnostics()[0]),
+            "m.smobj:1: error: [S902] library face 'knit': edge type 'l' is neither a directed "
+            "loop edge (-l/+l) nor a yarn edge (y)");
+}
+
+TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
+  const fs::path dir = plan_folder(fixtures::y_shape(12, 3, 4, 3), "sched-y");
+  wearknit::test::write_file(dir / "report.json", "{\"cut\": {\"arcs\": 3}}\n");
+  const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 5");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const json report = json::parse(wearknit::test::read_file(dir / "report.json"));
+  EXPECT_EQ(report["cut"]["arcs"], 3);
+  EXPECT_EQ(report["schedule"]["trials"], 5);
+  EXPECT_EQ(report["schedule"]["cuts_per_trial"].size(), 5u);
+  EXPECT_EQ(report["schedule"]["cuts"], 0);
+  ASSERT_EQ(report["schedule"]["pieces"].size(), 1u);
+  EXPECT_GT(report["schedule"]["pieces"][0]["estimated_knit_time_s"].get<double>(), 0);
+  EXPECT_EQ(report["schedule"]["pieces"][0]["vm_warnings"], 0);
+  EXPECT_EQ(report["schedule"]["pieces"][0]["bed_view"], "pieces/piece-1.svg");
+  EXPECT_NE(wearknit::test::read_file(dir / "pieces" / "piece-1.svg").find("<svg"),
+            std::string::npos);
+  const std::string k = wearknit::test::read_file(dir / "pieces" / "piece-1.k");
+  knitout::DiagnosticSink sink;
+  const auto program = knitout::parse_string(k, "piece-1.k", sink);
+  EXPECT_FALSE(sink.has_errors());
+  EXPECT_TRUE(testing::check_bed(program).errors.empty());
+  const json cuts = json::parse(wearknit::test::read_file(dir / "cuts.json"));
+  EXPECT_TRUE(cuts["schedule_cuts"].empty());
+}
+
+TEST(ScheduleCliTest, CrossingBranchesGetASewCutAndTwoPieces) {
+  const fs::path dir = plan_folder(fixtures::crossing_branches(12, 3, 10), "sched-x");
+  const auto result =
+      wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 8 --pattern seed");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const json cuts = json::parse(wearknit::test::read_file(dir / "cuts.json"));
+  ASSERT_EQ(cuts["schedule_cuts"].size(), 1u);
+  EXPECT_EQ(cuts["schedule_cuts"][0]["label"], "sew");
+  EXPECT_FALSE(cuts["schedule_cuts"][0]["faces"].empty());
+  EXPECT_TRUE(fs::exists(dir / "pieces" / "piece-2.k"));
+}
+
+TEST(ScheduleCliTest, MissingStitchMeshIsAnIoError) {
+  const fs::path dir = wearknit::test::make_temp_dir("sched-empty");
+  const auto result = wearknit::test::run_wearknit("schedule " + dir.string());
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.err,
+            (dir / "stitch-mesh.smobj").string() + ": error: [S900] cannot open the stitch mesh\n");
+}
+
+TEST(ScheduleCliTest, UnschedulableMeshIsInvalidInput) {
+  StitchMesh mesh = fixtures::rectangle(3, 2);
+  mesh.faces[4].roles = {EdgeRole::Wale, EdgeRole::Wale, EdgeRole::CourseOut, EdgeRole::Wale};
+  const fs::path dir = plan_folder(mesh, "sched-bad");
+  const auto result = wearknit::test::run_wearknit("schedule " + dir.string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err,
+            (dir / "stitch-mesh.smobj").string() + ": error: [S910] face 4: no course-in side\n");
+  EXPECT_FALSE(fs::exists(dir / "pieces"));
+}
+
+TEST(ScheduleCliTest, TrialsAndTimeBudgetExcludeEachOther) {
+  const fs::path dir = plan_folder(fixtures::rectangle(3, 2), "sched-opts");
+  const auto result =
+      wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 3 --time-budget 1");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.err, "wearknit schedule: give --trials or --time-budget, not both\n");
+}
+
+TEST(ScheduleCliTest, TimeBudgetAloneIsAccepted) {
+  const fs::path dir = plan_folder(fixtures::rectangle(3, 2), "sched-budget");
+  const auto result =
+      wearknit::test::run_wearknit("schedule " + dir.string() + " --time-budget 0.05 --quiet");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.out, "");
+}
+
+}  // namespace
+}  // namespace planner

@@ -1,0 +1,78 @@
+// The needle-bed VM judges the scheduler's knitout: every piece of every
+// synthetic shape, plain and seed, validates with zero errors, and the VM's
+// knit graph has one knitted loop per subdivided face, made by the yarn in
+// the traced order (§7.4). Skipped, visibly, in a build without the VM.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "knitout/parser.hpp"
+#include "planner/knitout_emit.hpp"
+#include "tests/planner/schedule_fixtures.hpp"
+
+#if __has_include("simulators/bed/validate.hpp")
+#include "simulators/bed/knit_graph.hpp"
+#include "simulators/bed/validate.hpp"
+#define WEARKNIT_HAVE_VM 1
+#endif
+
+namespace planner {
+namespace {
+
+namespace fx = fixtures;
+
+TEST(ScheduleVmTest, EveryPieceValidatesAndKnitsItsFacesInTracedOrder) {
+#ifndef WEARKNIT_HAVE_VM
+  GTEST_SKIP() << "the needle-bed VM (simulators/bed) is not in this build";
+#else
+  std::vector<std::pair<std::string, StitchMesh> > shapes = {
+      {"rectangle", fx::rectangle(10, 6)},
+      {"trapezoid", fx::trapezoid(16, 10)},
+      {"widening", fx::widening(6, 10)},
+      {"short-rows-one-side", fx::short_rows(12, 3, false)},
+      {"short-rows-both-sides", fx::short_rows(14, 3, true)},
+      {"y-shape", fx::y_shape(14, 3, 5, 4)},
+      {"crossing-branches", fx::crossing_branches(12, 3, 10)}};
+  for (std::uint32_t seed = 1; seed <= 40; ++seed) {
+    shapes.emplace_back("random-" + std::to_string(seed), fx::random_shape(seed));
+  }
+  for (const auto& [name, mesh] : shapes) {
+    ScheduleParams params;
+    params.trials = 10;
+    params.threads = 1;
+    const Schedule s = schedule(mesh, params);
+    for (StitchPattern pattern : {StitchPattern::Plain, StitchPattern::Seed}) {
+      EmitParams emit;
+      emit.pattern = pattern;
+      for (std::size_t p = 0; p < s.pieces.size(); ++p) {
+        SCOPED_TRACE(name + " " + std::string(stitch_pattern_name(pattern)) + " piece " +
+                     std::to_string(p + 1));
+        const EmittedPiece piece = emit_piece(mesh, s, p, emit);
+        knitout::DiagnosticSink sink;
+        const knitout::Program program = knitout::parse_string(piece.knitout, name, sink);
+        bed::KnitGraph graph;
+        bed::MachineOptions options;
+        options.observer = &graph;
+        bed::validate(program, bed::default_profile(), sink, name, options);
+        ASSERT_EQ(sink.error_count(), 0u) << knitout::format(sink.sorted().front());
+        // The knitted loops at the trace's lines, in the yarn's order.
+        std::set<std::uint32_t> lines;
+        for (const TraceStep& t : piece.trace) lines.insert(static_cast<std::uint32_t>(t.line));
+        std::vector<std::uint32_t> made;
+        for (const auto& loop : graph.loops()) {
+          if (loop.kind == bed::LoopKind::Knit && lines.count(loop.line) != 0)
+            made.push_back(loop.line);
+        }
+        ASSERT_EQ(made.size(), piece.trace.size());
+        for (std::size_t i = 0; i < made.size(); ++i) {
+          EXPECT_EQ(made[i], static_cast<std::uint32_t>(piece.trace[i].line));
+        }
+      }
+    }
+  }
+#endif
+}
+
+}  // namespace
+}  // namespace planner
