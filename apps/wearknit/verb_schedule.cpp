@@ -12,6 +12,8 @@
 #include <thread>
 
 #include "apps/wearknit/cli.hpp"
+#include "backends/dat/passes.hpp"
+#include "backends/dat/raster.hpp"
 #include "knitout/output_file.hpp"
 #include "knitout/parser.hpp"
 #include "planner/knitout_emit.hpp"
@@ -192,6 +194,29 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
       context.err << "wearknit schedule: " << failure << '\n';
       return kExitUsage;
     }
+    // The DAT the Shima machine takes (issue: pieces/NAME.dat). A piece the
+    // DAT backend refuses is a scheduler bug, like a VM error above.
+    knitout::DiagnosticSink dat_sink;
+    std::optional<std::vector<std::uint8_t>> dat_bytes;
+    if (auto passes = dat::form_passes(*judged[p].program, name + ".k", dat_sink)) {
+      dat_bytes = dat::write_dat(*passes, dat_sink);
+    }
+    if (!dat_bytes) {
+      context.err << "wearknit schedule: internal error: the DAT backend rejects " << name
+                  << ".k:\n";
+      knitout::print_text(context.err, dat_sink.sorted());
+      return kExitUsage;
+    }
+    const std::string dat_path = (folder / "pieces" / (name + ".dat")).string();
+    const std::string dat_failure =
+        knitout::write_file_atomically(dat_path, [&](std::ostream& out) {
+          out.write(reinterpret_cast<const char*>(dat_bytes->data()),
+                    static_cast<std::streamsize>(dat_bytes->size()));
+        });
+    if (!dat_failure.empty()) {
+      context.err << "wearknit schedule: " << dat_failure << '\n';
+      return kExitUsage;
+    }
     const std::string view_path = (folder / "pieces" / (name + ".svg")).string();
     const std::string view_failure =
         judged[p].view.write(view_path, *judged[p].machine, name + ".k");
@@ -205,6 +230,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
       faces += schedule.rows[static_cast<std::size_t>(r)].faces.size();
     piece_list.push_back({{"name", name},
                           {"knitout", "pieces/" + name + ".k"},
+                          {"dat", "pieces/" + name + ".dat"},
                           {"rows", st.rows},
                           {"stitches", faces},
                           {"passes", st.passes},

@@ -94,6 +94,17 @@ TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
   EXPECT_TRUE(testing::check_bed(program).errors.empty());
   const json cuts = json::parse(wearknit::test::read_file(dir / "cuts.json"));
   EXPECT_TRUE(cuts["schedule_cuts"].empty());
+  // The piece's DAT is what `wearknit dat` makes of its knitout, and reads back.
+  EXPECT_EQ(report["schedule"]["pieces"][0]["dat"], "pieces/piece-1.dat");
+  const fs::path again = dir / "again.dat";
+  const auto converted = wearknit::test::run_wearknit(
+      "dat " + (dir / "pieces" / "piece-1.k").string() + " -o " + again.string());
+  ASSERT_EQ(converted.exit_code, 0) << converted.err;
+  EXPECT_EQ(wearknit::test::read_file(dir / "pieces" / "piece-1.dat"),
+            wearknit::test::read_file(again));
+  const auto info =
+      wearknit::test::run_wearknit("dat-info " + (dir / "pieces" / "piece-1.dat").string());
+  EXPECT_EQ(info.exit_code, 0) << info.err;
 }
 
 TEST(ScheduleCliTest, CrossingBranchesGetASewCutAndTwoPieces) {
