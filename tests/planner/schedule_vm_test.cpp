@@ -1,7 +1,7 @@
 // The needle-bed VM judges the scheduler's knitout: every piece of every
 // synthetic shape, plain and seed, validates with zero errors, and the VM's
 // knit graph has one knitted loop per subdivided face, made by the yarn in
-// the traced order (§7.4). Skipped, visibly, in a build without the VM.
+// the traced order (§7.4).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,13 +9,9 @@
 
 #include "knitout/parser.hpp"
 #include "planner/knitout_emit.hpp"
-#include "tests/planner/schedule_fixtures.hpp"
-
-#if __has_include("simulators/bed/validate.hpp")
 #include "simulators/bed/knit_graph.hpp"
 #include "simulators/bed/validate.hpp"
-#define WEARKNIT_HAVE_VM 1
-#endif
+#include "tests/planner/schedule_fixtures.hpp"
 
 namespace planner {
 namespace {
@@ -23,9 +19,6 @@ namespace {
 namespace fx = fixtures;
 
 TEST(ScheduleVmTest, EveryPieceValidatesAndKnitsItsFacesInTracedOrder) {
-#ifndef WEARKNIT_HAVE_VM
-  GTEST_SKIP() << "the needle-bed VM (simulators/bed) is not in this build";
-#else
   std::vector<std::pair<std::string, StitchMesh> > shapes = {
       {"rectangle", fx::rectangle(10, 6)},
       {"trapezoid", fx::trapezoid(16, 10)},
@@ -71,7 +64,6 @@ TEST(ScheduleVmTest, EveryPieceValidatesAndKnitsItsFacesInTracedOrder) {
       }
     }
   }
-#endif
 }
 
 }  // namespace
