@@ -13,6 +13,13 @@ const std::vector<Verb>& verbs() {
       {"fmt", "fmt FILE.k [-o OUT.k] [--check]", "write a knitout file in canonical form", run_fmt},
       {"demo", "demo [-o DIR]", "run the built-in example end to end and say what to open",
        run_demo},
+      {"devices", "devices", "list serial ports and USB devices", run_devices},
+      {"send", "send JOB --to URI [--resume]",
+       "send a job (DAT or knitout) to a machine, with progress", run_send},
+      {"status", "status --to URI [--pause | --continue | --cancel] [--json]",
+       "show a machine's job and counters; pause, continue or cancel it", run_status},
+      {"mock-device", "mock-device --listen URI --store DIR [--fault SPEC] [--rows-per-s N]",
+       "the loopback mock knitting machine", run_mock_device},
   };
   return kVerbs;
 }

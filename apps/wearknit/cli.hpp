@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "devices/job.hpp"
 #include "knitout/diagnostic.hpp"
 
 namespace wearknit::cli {
@@ -56,5 +57,13 @@ void print_diagnostics(Context& context, const std::vector<knitout::Diagnostic>&
 
 int run_fmt(const std::vector<std::string>& args, Context& context);
 int run_demo(const std::vector<std::string>& args, Context& context);
+int run_send(const std::vector<std::string>& args, Context& context);
+int run_status(const std::vector<std::string>& args, Context& context);
+int run_devices(const std::vector<std::string>& args, Context& context);
+int run_mock_device(const std::vector<std::string>& args, Context& context);
+
+// The checks a device runs on a received job before knitting it, made of the
+// project's own readers (verb_mock_device.cpp).
+devices::JobCheckers project_job_checkers();
 
 }  // namespace wearknit::cli
