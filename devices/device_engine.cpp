@@ -24,8 +24,8 @@ namespace {
 // simulated power cycle inside one process can observe.
 void write_atomically(const std::filesystem::path& path, const std::string& text, bool sync) {
   if (sync) {
-    const std::string failure = knitout::write_file_atomically(
-        path.string(), [&](std::ostream& out) { out << text; });
+    const std::string failure =
+        knitout::write_file_atomically(path.string(), [&](std::ostream& out) { out << text; });
     if (!failure.empty()) throw std::runtime_error("mock device: " + failure);
     return;
   }
@@ -257,9 +257,9 @@ void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& 
         state_ = JobState::Receiving;
         append_and_sync(part_path(), {}, config_.sync);
         save();
-        event("job " + m.name + ": manifest accepted (" + std::string(to_string(m.format)) +
-              ", " + std::to_string(m.size) + " bytes, " + std::to_string(m.rows) +
-              " rows, sha256 " + to_hex(m.sha256) + ")");
+        event("job " + m.name + ": manifest accepted (" + std::string(to_string(m.format)) + ", " +
+              std::to_string(m.size) + " bytes, " + std::to_string(m.rows) + " rows, sha256 " +
+              to_hex(m.sha256) + ")");
       }
       reply_status();
       return;
@@ -358,8 +358,8 @@ void DeviceEngine::verify_complete_job() {
     return;
   }
   if (rows.value().size() - 1 != manifest_.rows) {
-    refuse("the job has " + std::to_string(rows.value().size() - 1) +
-           " rows, the manifest says " + std::to_string(manifest_.rows));
+    refuse("the job has " + std::to_string(rows.value().size() - 1) + " rows, the manifest says " +
+           std::to_string(manifest_.rows));
     return;
   }
   const auto& check =
@@ -407,8 +407,10 @@ void DeviceEngine::knit(double now_s) {
   }
   std::uint64_t target = manifest_.rows;
   if (config_.rows_per_s > 0) {
-    target = knit_origin_rows_ +
-             static_cast<std::uint64_t>(std::floor((now_s - knit_origin_s_) * config_.rows_per_s));
+    // A clock that steps back knits nothing rather than a huge number of rows.
+    const double elapsed = std::max(0.0, now_s - knit_origin_s_);
+    target =
+        knit_origin_rows_ + static_cast<std::uint64_t>(std::floor(elapsed * config_.rows_per_s));
   }
   target = std::min<std::uint64_t>(target, manifest_.rows);
   Alarm raise = Alarm::None;
@@ -440,9 +442,9 @@ void DeviceEngine::knit(double now_s) {
   if (knitted_ == manifest_.rows) {
     auto log = verify_knit_log(job_id_, manifest_.rows);
     if (!log || log.value() != manifest_.rows) {
-      throw std::logic_error("mock device: knit log of job " + std::to_string(job_id_) + ": " +
-                             (log ? "holds " + std::to_string(log.value()) + " rows"
-                                  : log.error().message));
+      throw std::logic_error(
+          "mock device: knit log of job " + std::to_string(job_id_) + ": " +
+          (log ? "holds " + std::to_string(log.value()) + " rows" : log.error().message));
     }
     state_ = JobState::Done;
     ++jobs_done_;

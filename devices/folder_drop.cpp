@@ -41,9 +41,8 @@ Outcome deliver_to_folder(const Job& job, const std::filesystem::path& folder) {
                           " bytes with SHA-256 " + to_hex(sha256(back)) + ", wrote " +
                           std::to_string(job.bytes.size()) + " bytes with " + to_hex(job.sha256));
   }
-  failure = knitout::write_file_atomically(
-      (folder / (job.name + ".manifest.json")).string(),
-      [&](std::ostream& out) { out << manifest_json(job); });
+  failure = knitout::write_file_atomically((folder / (job.name + ".manifest.json")).string(),
+                                           [&](std::ostream& out) { out << manifest_json(job); });
   if (!failure.empty()) return make_error(ErrorClass::OsFailure, failure);
   return Ok{};
 }

@@ -102,7 +102,9 @@ Bytes slip_encode(std::span<const std::uint8_t> bytes) {
   return out;
 }
 
-Bytes encode_wire(const Frame& frame) { return slip_encode(encode_frame(frame)); }
+Bytes encode_wire(const Frame& frame) {
+  return slip_encode(encode_frame(frame));
+}
 
 bool decode_frame(std::span<const std::uint8_t> bytes, Frame& out) {
   if (bytes.size() < kHeaderSize + kCrcSize) return false;
@@ -135,7 +137,8 @@ bool decode_frame(std::span<const std::uint8_t> bytes, Frame& out) {
   out.flags = flags;
   out.job_id = job_id;
   out.seq = seq;
-  out.payload.assign(bytes.begin() + kHeaderSize, bytes.begin() + static_cast<std::ptrdiff_t>(body));
+  out.payload.assign(bytes.begin() + kHeaderSize,
+                     bytes.begin() + static_cast<std::ptrdiff_t>(body));
   return true;
 }
 

@@ -26,13 +26,13 @@ inline constexpr std::size_t kCrcSize = 4;
 inline constexpr std::size_t kMaxPayload = 65535;
 
 enum class FrameType : std::uint8_t {
-  Hello = 0x01,      // host -> device: versions and capabilities
-  Manifest = 0x02,   // host -> device: a new job
-  Row = 0x03,        // host -> device: one row of the job (seq = row index)
+  Hello = 0x01,     // host -> device: versions and capabilities
+  Manifest = 0x02,  // host -> device: a new job
+  Row = 0x03,       // host -> device: one row of the job (seq = row index)
   StatusRequest = 0x04,
-  Command = 0x05,    // host -> device: pause / resume / cancel
-  Status = 0x81,     // device -> host: the full state (answers every request)
-  Ack = 0x82,        // device -> host: counters after a Row
+  Command = 0x05,  // host -> device: pause / resume / cancel
+  Status = 0x81,   // device -> host: the full state (answers every request)
+  Ack = 0x82,      // device -> host: counters after a Row
 };
 
 struct Frame {

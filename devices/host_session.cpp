@@ -276,8 +276,7 @@ void HostSession::on_status(const Frame& frame, const StatusMessage& status, dou
     send_request(FrameType::Manifest, encode(job_.manifest()), now_s);
     return;
   }
-  if (phase_ == Phase::Transfer && frame.job_id == job_id_ &&
-      status.state == JobState::Receiving) {
+  if (phase_ == Phase::Transfer && frame.job_id == job_id_ && status.state == JobState::Receiving) {
     // A window probe's answer: rows may still be in flight, keep them.
     apply_counters(status.state, status.rows_received, status.rows_knitted, status.buffer_free,
                    now_s);
@@ -289,9 +288,9 @@ void HostSession::on_status(const Frame& frame, const StatusMessage& status, dou
     } else if (phase_ == Phase::Manifest) {
       send_request(FrameType::Manifest, encode(job_.manifest()), now_s);
     } else {
-      fail("the device now holds another job ('" + status.name + "'); this job's progress: " +
-           std::to_string(progress_.rows_knitted) + " of " + std::to_string(job_.row_count()) +
-           " rows knitted");
+      fail("the device now holds another job ('" + status.name +
+           "'); this job's progress: " + std::to_string(progress_.rows_knitted) + " of " +
+           std::to_string(job_.row_count()) + " rows knitted");
     }
     return;
   }

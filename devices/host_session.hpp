@@ -21,7 +21,7 @@
 namespace devices {
 
 struct SendOptions {
-  bool resume = false;  // adopt the device's unfinished copy of this same job
+  bool resume = false;            // adopt the device's unfinished copy of this same job
   std::uint32_t max_window = 64;  // rows in flight at most
   double rto_s = 0.2;             // first retransmission timeout
   double max_rto_s = 2.0;

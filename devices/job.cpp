@@ -55,9 +55,9 @@ Result<std::vector<std::size_t>> split_dat(std::span<const std::uint8_t> bytes) 
     offsets.push_back(at);
   }
   if (at != bytes.size()) {
-    return make_error(ErrorClass::InvalidArgument,
-                      "DAT has " + std::to_string(bytes.size() - at) + " bytes after its " +
-                          std::to_string(height) + " raster rows");
+    return make_error(ErrorClass::InvalidArgument, "DAT has " + std::to_string(bytes.size() - at) +
+                                                       " bytes after its " +
+                                                       std::to_string(height) + " raster rows");
   }
   return offsets;
 }
@@ -86,11 +86,11 @@ Result<std::vector<std::size_t>> split_knitout(std::span<const std::uint8_t> byt
     if (instruction.op == knitout::Op::Comment) continue;
     if (instruction.line == 0 || instruction.line > line_count) continue;
     first_instruction_line = std::min<std::size_t>(first_instruction_line, instruction.line);
-    kind[instruction.line] =
-        is_pass_op(instruction.op) ? (instruction.direction == knitout::Direction::Plus    ? 1
-                                      : instruction.direction == knitout::Direction::Minus ? 2
-                                                                                           : 0)
-                                   : 0;
+    kind[instruction.line] = is_pass_op(instruction.op)
+                                 ? (instruction.direction == knitout::Direction::Plus    ? 1
+                                    : instruction.direction == knitout::Direction::Minus ? 2
+                                                                                         : 0)
+                                 : 0;
   }
   std::vector<std::size_t> offsets{0};
   if (first_instruction_line > line_count) {
@@ -103,9 +103,9 @@ Result<std::vector<std::size_t>> split_knitout(std::span<const std::uint8_t> byt
     const std::size_t start = line_start[line];
     const std::size_t end = line < line_count ? line_start[line + 1] : bytes.size();
     if (end - start > kMaxRowBytes) {
-      return make_error(ErrorClass::InvalidArgument,
-                        "line " + std::to_string(line) + " is longer than " +
-                            std::to_string(kMaxRowBytes) + " bytes");
+      return make_error(ErrorClass::InvalidArgument, "line " + std::to_string(line) +
+                                                         " is longer than " +
+                                                         std::to_string(kMaxRowBytes) + " bytes");
     }
     const int direction = kind[line] > 0 ? kind[line] : 0;
     bool boundary = line == first_instruction_line;
@@ -152,8 +152,7 @@ JobFormat detect_format(const std::string& name, std::span<const std::uint8_t> b
   return JobFormat::Unknown;
 }
 
-Result<std::vector<std::size_t>> split_rows(JobFormat format,
-                                            std::span<const std::uint8_t> bytes) {
+Result<std::vector<std::size_t>> split_rows(JobFormat format, std::span<const std::uint8_t> bytes) {
   if (bytes.empty()) return make_error(ErrorClass::InvalidArgument, "the job is empty");
   switch (format) {
     case JobFormat::Dat:
@@ -207,14 +206,14 @@ Result<Job> load_job(const std::filesystem::path& path) {
 
 std::string check_knitout_syntax(const std::string& name, std::span<const std::uint8_t> bytes) {
   knitout::DiagnosticSink sink(20);
-  knitout::parse_string(
-      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), name, sink);
+  knitout::parse_string(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                        name, sink);
   for (const knitout::Diagnostic& d : sink.diagnostics()) {
     if (d.severity == knitout::Severity::Error) {
-      return knitout::format(d) + (sink.error_count() > 1
-                                       ? " (and " + std::to_string(sink.error_count() - 1) +
-                                             " more errors)"
-                                       : "");
+      return knitout::format(d) +
+             (sink.error_count() > 1
+                  ? " (and " + std::to_string(sink.error_count() - 1) + " more errors)"
+                  : "");
     }
   }
   return {};

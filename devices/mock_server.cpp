@@ -20,8 +20,7 @@ namespace devices {
 namespace {
 
 double seconds_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 struct Connection {
@@ -118,8 +117,9 @@ Outcome run_mock_server(MockServerOptions options) {
     listening = uri.text;
   } else {
     return make_error(ErrorClass::Unsupported,
-                      uri.text + ": the mock device listens on tcp://HOST:PORT, pty: or "
-                                 "serial:PATH (a USB device is the machine's own side)");
+                      uri.text +
+                          ": the mock device listens on tcp://HOST:PORT, pty: or "
+                          "serial:PATH (a USB device is the machine's own side)");
   }
   if (options.on_listening) options.on_listening(listening);
 
@@ -181,10 +181,9 @@ Outcome run_mock_server(MockServerOptions options) {
         continue;
       }
       std::vector<Bytes> frames;
-      c.decoder.feed(std::span(buffer, static_cast<std::size_t>(n)),
-                     [&](std::span<const std::uint8_t> raw) {
-                       frames.emplace_back(raw.begin(), raw.end());
-                     });
+      c.decoder.feed(
+          std::span(buffer, static_cast<std::size_t>(n)),
+          [&](std::span<const std::uint8_t> raw) { frames.emplace_back(raw.begin(), raw.end()); });
       for (Bytes& raw : frames) {
         replies.clear();
         for (const Bytes& copy : faults.pass(std::move(raw))) {

@@ -37,8 +37,8 @@ std::string_view to_string(JobState state) {
 }
 
 bool job_unfinished(JobState state) {
-  return state == JobState::Receiving || state == JobState::Knitting ||
-         state == JobState::Paused || state == JobState::Alarm;
+  return state == JobState::Receiving || state == JobState::Knitting || state == JobState::Paused ||
+         state == JobState::Alarm;
 }
 
 std::string_view to_string(Alarm alarm) {
@@ -158,7 +158,9 @@ bool decode(std::span<const std::uint8_t> payload, StatusMessage& m) {
          static_cast<int>(m.alarm) <= 2;
 }
 
-Bytes encode(const CommandMessage& m) { return Bytes{static_cast<std::uint8_t>(m.command)}; }
+Bytes encode(const CommandMessage& m) {
+  return Bytes{static_cast<std::uint8_t>(m.command)};
+}
 
 bool decode(std::span<const std::uint8_t> payload, CommandMessage& m) {
   if (payload.size() != 1 || payload[0] < 1 || payload[0] > 3) return false;

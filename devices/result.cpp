@@ -1,10 +1,11 @@
+#include "devices/result.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
 
 #include "devices/debug.hpp"
-#include "devices/result.hpp"
 
 namespace devices {
 

@@ -11,11 +11,12 @@ namespace devices {
 namespace {
 
 double seconds_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-void sleep_s(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
+void sleep_s(double s) {
+  std::this_thread::sleep_for(std::chrono::duration<double>(s));
+}
 
 Result<std::unique_ptr<Transport>> open_stream(const DeviceUri& uri, const LinkOptions& link) {
   if (uri.kind == DeviceUri::Kind::Loopback) return open_loopback(uri.path, link.loopback_checkers);
@@ -35,10 +36,10 @@ Outcome write_frames(Transport& transport, std::vector<Frame> frames, int timeou
 
 // One request/response exchange on a fresh connection: repeats `request`
 // until a STATUS answers it; `accept` decides whether that answer is final.
-Result<DeviceStatus> exchange(const DeviceUri& uri, const LinkOptions& link,
-                              const std::function<Frame(std::uint32_t seq,
-                                                        const DeviceStatus* last)>& request,
-                              const std::function<bool(const DeviceStatus&)>& accept) {
+Result<DeviceStatus> exchange(
+    const DeviceUri& uri, const LinkOptions& link,
+    const std::function<Frame(std::uint32_t seq, const DeviceStatus* last)>& request,
+    const std::function<bool(const DeviceStatus&)>& accept) {
   auto transport = open_stream(uri, link);
   if (!transport) return transport.error();
   SlipDecoder decoder;
@@ -153,18 +154,17 @@ Result<SendReport> send_job(const DeviceUri& uri, const Job& job, const SendOpti
     }
     if (++failed_attempts > link.max_attempts) {
       const Progress p = session.progress();
-      return make_error(
-          ErrorClass::Disconnected,
-          "gave up on " + uri.text + " after " + std::to_string(link.max_attempts) +
-              " attempts in a row (" + last_problem + "); " + std::to_string(p.rows_received) +
-              " of " + std::to_string(p.rows_total) + " rows were acknowledged and " +
-              std::to_string(p.rows_knitted) +
-              " knitted. The device keeps its counters: run `wearknit send " + job.name +
-              " --to " + uri.text + " --resume` to finish the job");
+      return make_error(ErrorClass::Disconnected,
+                        "gave up on " + uri.text + " after " + std::to_string(link.max_attempts) +
+                            " attempts in a row (" + last_problem + "); " +
+                            std::to_string(p.rows_received) + " of " +
+                            std::to_string(p.rows_total) + " rows were acknowledged and " +
+                            std::to_string(p.rows_knitted) +
+                            " knitted. The device keeps its counters: run `wearknit send " +
+                            job.name + " --to " + uri.text + " --resume` to finish the job");
     }
-    const double backoff =
-        std::min(link.first_backoff_s * (1 << std::min(failed_attempts - 1, 10)),
-                 link.max_backoff_s);
+    const double backoff = std::min(link.first_backoff_s * (1 << std::min(failed_attempts - 1, 10)),
+                                    link.max_backoff_s);
     note("connection lost (" + last_problem + "); retrying in " +
          std::to_string(static_cast<int>(backoff * 1000)) + " ms (attempt " +
          std::to_string(failed_attempts) + " of " + std::to_string(link.max_attempts) + ")");
@@ -200,8 +200,8 @@ Result<DeviceStatus> send_command(const DeviceUri& uri, Command command, const L
         if (s.job_id != job_id) return true;  // someone else's job now: report it
         switch (command) {
           case Command::Pause:
-            return s.status.state == JobState::Paused ||
-                   (s.status.state == JobState::Receiving) || !job_unfinished(s.status.state);
+            return s.status.state == JobState::Paused || (s.status.state == JobState::Receiving) ||
+                   !job_unfinished(s.status.state);
           case Command::Resume:
             return s.status.state != JobState::Paused && s.status.state != JobState::Alarm;
           case Command::Cancel:

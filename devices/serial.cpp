@@ -7,7 +7,9 @@
 namespace devices {
 namespace {
 
-std::string rc(sp_return r) { return std::to_string(static_cast<int>(r)); }
+std::string rc(sp_return r) {
+  return std::to_string(static_cast<int>(r));
+}
 
 class RealSerialApi final : public SerialApi {
  public:
@@ -101,8 +103,7 @@ class SerialTransport final : public Transport {
     if (static_cast<std::size_t>(n) < bytes.size()) {
       return make_error(ErrorClass::Timeout, "serial:" + path_ + ": wrote " + std::to_string(n) +
                                                  " of " + std::to_string(bytes.size()) +
-                                                 " bytes in " + std::to_string(timeout_ms) +
-                                                 " ms");
+                                                 " bytes in " + std::to_string(timeout_ms) + " ms");
     }
     return Ok{};
   }
@@ -140,8 +141,8 @@ SerialApi& real_serial_api() {
 Result<std::unique_ptr<Transport>> open_serial(SerialApi& api, const std::string& path, int baud) {
   sp_port* port = nullptr;
   if (api.get_port_by_name(path.c_str(), &port) != SP_OK) {
-    return make_error(ErrorClass::InvalidArgument,
-                      "serial:" + path + ": no such serial port (" + api.last_error_message() + ")");
+    return make_error(ErrorClass::InvalidArgument, "serial:" + path + ": no such serial port (" +
+                                                       api.last_error_message() + ")");
   }
   if (const sp_return r = api.open(port, SP_MODE_READ_WRITE); r != SP_OK) {
     const std::string why = api.last_error_message();

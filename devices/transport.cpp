@@ -40,13 +40,12 @@ class FdTransport final : public Transport {
       if (ready < 0 && errno == EINTR) continue;
       if (ready < 0) return os_error("poll on " + description_);
       if (ready == 0) {
-        return make_error(ErrorClass::Timeout,
-                          description_ + ": the peer took no data for " +
-                              std::to_string(timeout_ms) + " ms");
+        return make_error(ErrorClass::Timeout, description_ + ": the peer took no data for " +
+                                                   std::to_string(timeout_ms) + " ms");
       }
-      const ssize_t n = is_socket_ ? ::send(fd_, bytes.data() + done, bytes.size() - done,
-                                            MSG_NOSIGNAL)
-                                   : ::write(fd_, bytes.data() + done, bytes.size() - done);
+      const ssize_t n = is_socket_
+                            ? ::send(fd_, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL)
+                            : ::write(fd_, bytes.data() + done, bytes.size() - done);
       if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
       if (n < 0 && (errno == EPIPE || errno == ECONNRESET || errno == EIO)) {
         return make_error(ErrorClass::Disconnected, description_ + ": connection lost");

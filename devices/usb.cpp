@@ -16,7 +16,9 @@ int traced(const std::string& call, int result) {
 
 class RealUsbApi final : public UsbApi {
  public:
-  int init(libusb_context** context) override { return traced("libusb_init", libusb_init(context)); }
+  int init(libusb_context** context) override {
+    return traced("libusb_init", libusb_init(context));
+  }
   void exit(libusb_context* context) override {
     debug_line("libusb_exit");
     libusb_exit(context);
@@ -30,8 +32,7 @@ class RealUsbApi final : public UsbApi {
   int get_device_descriptor(libusb_device* device, libusb_device_descriptor* out) override {
     return traced("libusb_get_device_descriptor", libusb_get_device_descriptor(device, out));
   }
-  int get_active_config_descriptor(libusb_device* device,
-                                   libusb_config_descriptor** out) override {
+  int get_active_config_descriptor(libusb_device* device, libusb_config_descriptor** out) override {
     return traced("libusb_get_active_config_descriptor",
                   libusb_get_active_config_descriptor(device, out));
   }
@@ -64,8 +65,8 @@ class RealUsbApi final : public UsbApi {
     }
     return r;
   }
-  int get_string_descriptor_ascii(libusb_device_handle* handle, uint8_t index,
-                                  unsigned char* data, int length) override {
+  int get_string_descriptor_ascii(libusb_device_handle* handle, uint8_t index, unsigned char* data,
+                                  int length) override {
     return traced("libusb_get_string_descriptor_ascii",
                   libusb_get_string_descriptor_ascii(handle, index, data, length));
   }
@@ -76,8 +77,8 @@ class RealUsbApi final : public UsbApi {
 };
 
 Error usb_error(const std::string& what, int code) {
-  const ErrorClass c = code == LIBUSB_ERROR_NO_DEVICE   ? ErrorClass::Disconnected
-                       : code == LIBUSB_ERROR_TIMEOUT   ? ErrorClass::Timeout
+  const ErrorClass c = code == LIBUSB_ERROR_NO_DEVICE       ? ErrorClass::Disconnected
+                       : code == LIBUSB_ERROR_TIMEOUT       ? ErrorClass::Timeout
                        : code == LIBUSB_ERROR_NOT_SUPPORTED ? ErrorClass::Unsupported
                        : code == LIBUSB_ERROR_INVALID_PARAM ? ErrorClass::InvalidArgument
                                                             : ErrorClass::OsFailure;
@@ -114,9 +115,9 @@ class UsbTransport final : public Transport {
     while (done < bytes.size()) {
       int transferred = 0;
       const int chunk = static_cast<int>(std::min<std::size_t>(bytes.size() - done, 1 << 16));
-      const int r = api_.bulk_transfer(handle_, out_, const_cast<unsigned char*>(bytes.data() + done),
-                                       chunk, &transferred,
-                                       static_cast<unsigned>(std::max(timeout_ms, 1)));
+      const int r =
+          api_.bulk_transfer(handle_, out_, const_cast<unsigned char*>(bytes.data() + done), chunk,
+                             &transferred, static_cast<unsigned>(std::max(timeout_ms, 1)));
       done += static_cast<std::size_t>(std::max(transferred, 0));
       if (r != 0) return usb_error(name_ + ": bulk OUT", r);
     }
@@ -146,8 +147,8 @@ class UsbTransport final : public Transport {
 };
 
 // First interface with one bulk IN and one bulk OUT endpoint.
-bool find_bulk_pair(UsbApi& api, libusb_device* device, int& interface_number,
-                    unsigned char& in, unsigned char& out) {
+bool find_bulk_pair(UsbApi& api, libusb_device* device, int& interface_number, unsigned char& in,
+                    unsigned char& out) {
   libusb_config_descriptor* config = nullptr;
   if (api.get_active_config_descriptor(device, &config) != 0) return false;
   bool found = false;
@@ -232,8 +233,8 @@ Result<std::unique_ptr<Transport>> open_usb(UsbApi& api, std::uint16_t vid, std:
       continue;
     }
     api.free_device_list(list);
-    return std::unique_ptr<Transport>(std::make_unique<UsbTransport>(
-        api, context, handle, interface_number, in, out, name));
+    return std::unique_ptr<Transport>(
+        std::make_unique<UsbTransport>(api, context, handle, interface_number, in, out, name));
   }
   api.free_device_list(list);
   api.exit(context);
