@@ -4,7 +4,6 @@
 // kind and 200 with all of them at once. Every run must end with the stored
 // job byte-identical to the sent one and every row knitted exactly once.
 #include <gtest/gtest.h>
-
 #include <stdlib.h>
 
 #include <deque>

@@ -8,7 +8,9 @@
 namespace devices {
 namespace {
 
-Bytes to_bytes(const std::string& s) { return Bytes(s.begin(), s.end()); }
+Bytes to_bytes(const std::string& s) {
+  return Bytes(s.begin(), s.end());
+}
 
 std::string row_text(const Job& job, std::uint32_t i) {
   const auto r = job.row(i);
@@ -88,7 +90,8 @@ TEST(JobTest, RefusesATruncatedDatWithTheReason) {
   dat.insert(dat.end(), {0, 7});
   auto over = make_job("t.dat", dat);
   ASSERT_FALSE(over.ok());
-  EXPECT_EQ(over.error().message, "DAT raster row 1 runs to 11 pixels, past the width 10 (offset 1540)");
+  EXPECT_EQ(over.error().message,
+            "DAT raster row 1 runs to 11 pixels, past the width 10 (offset 1540)");
   dat.back() = 6;
   EXPECT_TRUE(make_job("t.dat", dat).ok());
 }
@@ -104,16 +107,15 @@ TEST(JobTest, RefusesUnknownFormatsAndPathNames) {
 
 TEST(JobTest, KnitoutSyntaxCheckNamesFileLineAndCode) {
   const std::string bad = ";!knitout-2\n;;Carriers: 1 2 3\nbogus 3\n";
-  const std::string reason =
-      check_knitout_syntax("bad.k", std::span(reinterpret_cast<const std::uint8_t*>(bad.data()),
-                                              bad.size()));
+  const std::string reason = check_knitout_syntax(
+      "bad.k", std::span(reinterpret_cast<const std::uint8_t*>(bad.data()), bad.size()));
   EXPECT_EQ(reason.rfind("bad.k:3:", 0), 0u) << reason;
   EXPECT_NE(reason.find("error: [K"), std::string::npos) << reason;
   const std::string good = test::sheet_knitout(4, 2);
-  EXPECT_EQ(check_knitout_syntax(
-                "good.k",
-                std::span(reinterpret_cast<const std::uint8_t*>(good.data()), good.size())),
-            "");
+  EXPECT_EQ(
+      check_knitout_syntax(
+          "good.k", std::span(reinterpret_cast<const std::uint8_t*>(good.data()), good.size())),
+      "");
 }
 
 }  // namespace
