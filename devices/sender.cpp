@@ -19,6 +19,7 @@ void sleep_s(double s) {
 }
 
 Result<std::unique_ptr<Transport>> open_stream(const DeviceUri& uri, const LinkOptions& link) {
+  if (link.open) return link.open();
   if (uri.kind == DeviceUri::Kind::Loopback) return open_loopback(uri.path, link.loopback_checkers);
   return open_transport(uri);
 }

@@ -21,6 +21,9 @@ struct LinkOptions {
   int write_timeout_ms = 2000;
   JobCheckers loopback_checkers;  // for loopback: URIs
   std::uint32_t job_id = 0;       // 0: random
+  // Opens the link instead of the URI's own transport when set (tests put a
+  // transport over a faked libserialport or libusb here).
+  std::function<Result<std::unique_ptr<Transport>>()> open;
 };
 
 struct SendReport {

@@ -208,8 +208,7 @@ TEST_F(TcpTest, RefusedJobFailsTheSendWithTheDevicesReason) {
       send_job(parse_uri(server.uri()).value(), job.value(), fast_send(), fast_link(), nullptr);
   ASSERT_TRUE(report.ok());
   EXPECT_FALSE(report.value().done);
-  EXPECT_EQ(report.value().message.rfind("the device refused the job: bad.k:4:1: error: [K", 0),
-            0u)
+  EXPECT_EQ(report.value().message.rfind("the device refused the job: bad.k:4:1: error: [K", 0), 0u)
       << report.value().message;
 }
 
@@ -223,8 +222,10 @@ TEST_F(TcpTest, NothingListeningGivesUpAfterTheBoundedAttempts) {
   const Job job = test::make_sheet_job("x.k", 2, 2);
   auto report = send_job(parse_uri(uri_text).value(), job, fast_send(), fast_link(2), nullptr);
   ASSERT_FALSE(report.ok());
-  EXPECT_EQ(report.error().message.rfind("gave up on " + uri_text + " after 2 attempts in a row "
-                                         "(cannot connect to " + uri_text + ": nothing listens)",
+  EXPECT_EQ(report.error().message.rfind("gave up on " + uri_text +
+                                             " after 2 attempts in a row "
+                                             "(cannot connect to " +
+                                             uri_text + ": nothing listens)",
                                          0),
             0u)
       << report.error().message;
