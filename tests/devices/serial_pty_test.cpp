@@ -47,7 +47,8 @@ TEST_F(SerialPtyTest, SendsAJobOverLibserialportWithFaults) {
   send.silence_s = 1.0;
   LinkOptions link;
   link.first_backoff_s = 0.02;
-  auto report = send_job(parse_uri(server.uri() + "?baud=115200").value(), job, send, link, nullptr);
+  auto report =
+      send_job(parse_uri(server.uri() + "?baud=115200").value(), job, send, link, nullptr);
   ASSERT_TRUE(report.ok()) << report.error().text();
   ASSERT_TRUE(report.value().done) << report.value().message;
   server.stop();

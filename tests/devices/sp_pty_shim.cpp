@@ -27,7 +27,7 @@ int modem_bits[1024];
 
 const char* redirect(const char* path) {
   return path != nullptr && std::strncmp(path, kPts, sizeof kPts - 1) == 0 ? "/sys/class/tty/ptmx"
-                                                                            : path;
+                                                                           : path;
 }
 
 template <typename F>
