@@ -6,6 +6,7 @@
 
 #include "devices/sender.hpp"
 #include "devices/serial.hpp"
+#include "tests/devices/background_wearknit.hpp"
 #include "tests/devices/device_test_support.hpp"
 #include "tests/devices/mock_server_thread.hpp"
 #include "tests/test_support.hpp"
@@ -68,6 +69,25 @@ TEST_F(SerialPtyTest, StatusWorksOverThePseudoTerminal) {
   ASSERT_TRUE(status.ok()) << status.error().text();
   EXPECT_EQ(status.value().status.state, JobState::Idle);
   EXPECT_EQ(status.value().status.buffer_capacity, 32u);
+}
+
+TEST_F(SerialPtyTest, TheVerbsWorkOverAPseudoTerminal) {
+  // mock-device prints the pty it listens on; send reaches it through
+  // libserialport (the shim is inherited through LD_PRELOAD).
+  const std::string text = test::sheet_knitout(12, 40);
+  wearknit::test::write_file(store_ / "P.k", text);
+  test::BackgroundWearknit mock("mock-device --listen pty: --store '" + (store_ / "D").string() +
+                                "' --fault corrupt=0.01,drop=0.01,dup=0.01,disconnect-every=500"
+                                " --exit-when-done --no-sync --rows-per-s 0");
+  ASSERT_EQ(mock.uri().rfind("serial:/dev/pts/", 0), 0u) << mock.first_line();
+  const auto sent =
+      wearknit::test::run_wearknit("send '" + (store_ / "P.k").string() + "' --to " + mock.uri());
+  EXPECT_EQ(sent.exit_code, 0) << sent.err;
+  EXPECT_NE(sent.out.find("done: P.k -> " + mock.uri() + ": 42/42 rows knitted"), std::string::npos)
+      << sent.out;
+  EXPECT_NE(mock.finish().find("job P.k: done: knitted 42/42 rows, each exactly once"),
+            std::string::npos);
+  EXPECT_EQ(test::read_text(store_ / "D" / "P.k"), text);
 }
 
 TEST_F(SerialPtyTest, AMissingPortIsAnInvalidArgumentNamingIt) {

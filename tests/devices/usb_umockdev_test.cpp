@@ -3,11 +3,10 @@
 // (SUBMITURB, REAPURB, DISCARDURB, ...) here. Behind the device's bulk
 // endpoints sits the mock machine's engine. Must run under
 // `umockdev-wrapper` (ctest does); otherwise the tests skip, saying so.
+#include <gtest/gtest.h>
 #include <linux/usbdevice_fs.h>
 #include <sys/ioctl.h>
 #include <umockdev.h>
-
-#include <gtest/gtest.h>
 
 #include <chrono>
 #include <cstddef>
@@ -28,12 +27,22 @@ UMockdevTestbed* testbed = nullptr;
 
 // Device 1209:4b4e: descriptors (device, configuration, one vendor interface
 // with bulk IN 0x81 and bulk OUT 0x02, 512-byte packets).
-#define WK_DESCRIPTORS                                                             \
-  "1201000200000040" "09124E4B" "0001" "010203" "01"                               \
-  "0902200001010080" "32" "090400000" "2FF000000" "07058102000200" "07050202000200"
+#define WK_DESCRIPTORS \
+  "1201000200000040"   \
+  "09124E4B"           \
+  "0001"               \
+  "010203"             \
+  "01"                 \
+  "0902200001010080"   \
+  "32"                 \
+  "090400000"          \
+  "2FF000000"          \
+  "07058102000200"     \
+  "07050202000200"
 constexpr const char* kDevice =
     "P: /devices/pci0000:00/0000:00:14.0/usb1/1-2\n"
-    "N: bus/usb/001/003=" WK_DESCRIPTORS "\n"
+    "N: bus/usb/001/003=" WK_DESCRIPTORS
+    "\n"
     "E: BUSNUM=001\nE: DEVNUM=003\nE: DEVNAME=/dev/bus/usb/001/003\nE: DEVTYPE=usb_device\n"
     "E: DRIVER=usb\nE: SUBSYSTEM=usb\n"
     "A: busnum=1\\n\nA: devnum=3\\n\nA: idVendor=1209\nA: idProduct=4b4e\nA: speed=480\n"
@@ -42,8 +51,7 @@ constexpr const char* kDevice =
     "H: descriptors=" WK_DESCRIPTORS "\n";
 
 double seconds_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 // The mock USB device: usbdevfs requests in, the engine behind bulk OUT/IN.
@@ -71,8 +79,8 @@ struct MockUsbDevice {
       Urb u = pending_in.front();
       pending_in.pop_front();
       auto* urb = reinterpret_cast<usbdevfs_urb*>(u.urb->data);
-      const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(urb->buffer_length),
-                                                  to_host.size());
+      const std::size_t n =
+          std::min<std::size_t>(static_cast<std::size_t>(urb->buffer_length), to_host.size());
       std::copy_n(to_host.begin(), n, u.buffer->data);
       to_host.erase(to_host.begin(), to_host.begin() + static_cast<std::ptrdiff_t>(n));
       urb->actual_length = static_cast<int>(n);
@@ -164,8 +172,8 @@ gboolean on_ioctl(UMockdevIoctlBase*, UMockdevIoctlClient* client, gpointer) {
     case USBDEVFS_GET_CAPABILITIES: {
       UMockdevIoctlData* caps = umockdev_ioctl_data_resolve(arg, 0, sizeof(guint32), &error);
       *reinterpret_cast<guint32*>(caps->data) = USBDEVFS_CAP_BULK_CONTINUATION |
-                                                 USBDEVFS_CAP_NO_PACKET_SIZE_LIM |
-                                                 USBDEVFS_CAP_ZERO_PACKET;
+                                                USBDEVFS_CAP_NO_PACKET_SIZE_LIM |
+                                                USBDEVFS_CAP_ZERO_PACKET;
       umockdev_ioctl_client_complete(client, 0, 0);
       g_object_unref(caps);
       break;
@@ -340,8 +348,7 @@ int main(int argc, char** argv) {
     }
     handler = umockdev_ioctl_base_new();
     g_signal_connect(handler, "handle-ioctl", G_CALLBACK(devices::on_ioctl), nullptr);
-    if (!umockdev_testbed_attach_ioctl(devices::testbed, "/dev/bus/usb/001/003", handler,
-                                       &error)) {
+    if (!umockdev_testbed_attach_ioctl(devices::testbed, "/dev/bus/usb/001/003", handler, &error)) {
       std::fprintf(stderr, "umockdev: %s\n", error->message);
       return 1;
     }
