@@ -223,6 +223,7 @@ void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& 
   switch (frame.type) {
     case FrameType::Hello:
     case FrameType::StatusRequest:
+      tick(now_s);  // answer with the counters as of now
       reply_status();
       return;
     case FrameType::Manifest: {
@@ -270,6 +271,9 @@ void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& 
           bytes_received_ + buffered_bytes_ + frame.payload.size() <= manifest_.size) {
         buffered_bytes_ += frame.payload.size();
         buffer_.push_back(frame.payload);
+        // A full buffer goes to the store at once, so the acknowledgement
+        // can open the window again without the host having to ask.
+        if (buffer_.size() == config_.buffer_rows) flush_buffer();
       }
       // Cumulative: duplicates and gaps are answered, never applied.
       AckMessage ack{state(), accepted(), knitted_,

@@ -9,7 +9,9 @@
 //   .wearknit-device/job-ID.part      the rows received so far, in order
 //   .wearknit-device/job-ID.knitlog   one line per knitted row: its index
 // Rows pass through a RAM buffer of `buffer_rows` rows on their way to the
-// spool; a reboot loses the buffer and nothing else. A job is knitted only
+// spool (moved on every tick, and at once when full); a reboot loses the
+// buffer and nothing else. Acknowledgements announce the buffer's free room:
+// the host's window. A job is knitted only
 // after all of it arrived and its size, SHA-256, row count and the format's
 // checker agreed; knitting then advances at `rows_per_s` and the knit log is
 // the knitted counter, so a row is never knitted twice across restarts.

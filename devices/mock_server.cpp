@@ -180,6 +180,9 @@ Outcome run_mock_server(MockServerOptions options) {
         }
         continue;
       }
+      // Replies to everything one read brought go out in one write.
+      Bytes out;
+      bool cut = false;
       std::vector<Bytes> frames;
       c.decoder.feed(
           std::span(buffer, static_cast<std::size_t>(n)),
@@ -195,32 +198,29 @@ Outcome run_mock_server(MockServerOptions options) {
           if (debug_enabled()) debug_line("mock <- " + describe(frame));
           engine.handle(frame, seconds_now(), replies);
         }
-        Bytes out;
         for (const Frame& reply : replies) {
           if (debug_enabled()) debug_line("mock -> " + describe(reply));
           for (const Bytes& wire : faults.pass(encode_wire(reply))) {
             out.insert(out.end(), wire.begin(), wire.end());
           }
         }
-        if (!out.empty() && !write_fully(c.fd, out, c.is_socket)) {
-          hang_up(index);
-          break;
-        }
         const FaultInjector::Event event = faults.after_received_frame();
         if (event == FaultInjector::Event::Reboot) {
           engine.reboot(seconds_now());
-          hang_up(index);
+          cut = true;
           break;
         }
         if (event == FaultInjector::Event::Disconnect) {
           debug_line("mock: injected disconnect");
-          hang_up(index);
+          cut = true;
           break;
         }
         if (const std::uint32_t stall = faults.stall_now(); stall != 0) {
           std::this_thread::sleep_for(std::chrono::milliseconds(stall));
         }
       }
+      // A cut link loses what was still to be sent.
+      if (cut || (!out.empty() && !write_fully(c.fd, out, c.is_socket))) hang_up(index);
     }
     std::erase_if(connections, [](const Connection& c) { return c.fd < 0; });
     engine.tick(seconds_now());

@@ -20,8 +20,8 @@ class CliDevicesTest : public ::testing::Test {
 
 TEST_F(CliDevicesTest, TheDoneWhenCommandsStoreTheDatIdenticalAndKnitEveryRowOnce) {
   WEARKNIT_REQUIRE_SHARED(shared);
-  std::filesystem::copy_file(shared / "corpus" / "dat-reference" / "gen-intarsia-4color-200x200.dat",
-                             dir_ / "J.dat");
+  std::filesystem::copy_file(
+      shared / "corpus" / "dat-reference" / "gen-intarsia-4color-200x200.dat", dir_ / "J.dat");
   test::BackgroundWearknit mock("mock-device --listen tcp://127.0.0.1:0 --store " + path("D") +
                                 " --fault corrupt=0.01,drop=0.01,dup=0.01,disconnect-every=500"
                                 " --exit-when-done --no-sync --rows-per-s 5000");
@@ -54,7 +54,8 @@ TEST_F(CliDevicesTest, SendToAFolderWritesReadsBackAndLeavesAManifest) {
   EXPECT_EQ(r.out.rfind("stored " + (dir_ / "stick").string() + "/s.k (", 0), 0u) << r.out;
   EXPECT_EQ(test::read_text(dir_ / "stick" / "s.k"), text);
   EXPECT_TRUE(std::filesystem::exists(dir_ / "stick" / "s.k.manifest.json"));
-  const auto missing = run_wearknit("send " + path("s.k") + " --to dir:" + (dir_ / "nope").string());
+  const auto missing =
+      run_wearknit("send " + path("s.k") + " --to dir:" + (dir_ / "nope").string());
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_EQ(missing.err, "wearknit send: dir:" + (dir_ / "nope").string() +
                              ": no such folder (is the stick mounted?)\n");
@@ -74,12 +75,15 @@ TEST_F(CliDevicesTest, LoopbackSendThenStatusShowsTheJobDone) {
   EXPECT_NE(j.out.find("\"state\": \"done\""), std::string::npos) << j.out;
   const auto pause = run_wearknit("status --pause --to " + uri);
   EXPECT_EQ(pause.exit_code, 1);
-  EXPECT_EQ(pause.err, "wearknit status: " + uri + ": no unfinished job to pause (the device is done)\n");
+  EXPECT_EQ(pause.err,
+            "wearknit status: " + uri + ": no unfinished job to pause (the device is done)\n");
 }
 
 TEST_F(CliDevicesTest, AnInvalidJobIsRefusedByTheDeviceWithTheReason) {
-  wearknit::test::write_file(dir_ / "bad.k", ";!knitout-2\n;;Carriers: 1 2 3\ninhook 3\nknot + f1 3\n");
-  const auto r = run_wearknit("send -q " + path("bad.k") + " --to loopback:" + (dir_ / "lb").string());
+  wearknit::test::write_file(dir_ / "bad.k",
+                             ";!knitout-2\n;;Carriers: 1 2 3\ninhook 3\nknot + f1 3\n");
+  const auto r =
+      run_wearknit("send -q " + path("bad.k") + " --to loopback:" + (dir_ / "lb").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err.rfind("wearknit send: " + (dir_ / "bad.k").string() +
                             ": the device refused the job: bad.k:4:1: error: [K",

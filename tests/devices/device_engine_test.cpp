@@ -92,16 +92,18 @@ TEST_F(DeviceEngineTest, DuplicatesAndGapsAreAnsweredButNeverApplied) {
 }
 
 TEST_F(DeviceEngineTest, WindowIsTheFreeBuffer) {
-  auto e = open(/*buffer_rows=*/2);
+  auto e = open(/*buffer_rows=*/3);
   const Job job = test::make_sheet_job("s.k", 4, 6);
   call(*e, FrameType::Manifest, 7, 1, encode(job.manifest()));
   const auto row = [&](std::uint32_t r) { return Bytes(job.row(r).begin(), job.row(r).end()); };
-  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 0, row(0))[0]).buffer_free, 1u);
-  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 1, row(1))[0]).buffer_free, 0u);
+  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 0, row(0))[0]).buffer_free, 2u);
+  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 1, row(1))[0]).buffer_free, 1u);
+  // The third row fills the buffer, which goes to the store at once.
   const AckMessage full = ack_of(call(*e, FrameType::Row, 7, 2, row(2))[0]);
-  EXPECT_EQ(full.rows_received, 2u);  // no room: not taken
-  e->tick(now_);                      // the buffer drains to the store
-  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 2, row(2))[0]).rows_received, 3u);
+  EXPECT_EQ(full.rows_received, 3u);
+  EXPECT_EQ(full.buffer_free, 3u);
+  EXPECT_EQ(std::filesystem::file_size(store_ / ".wearknit-device" / "job-7.part"),
+            job.row_offsets[3]);
 }
 
 TEST_F(DeviceEngineTest, RefusesAJobWhoseBytesDoNotMatchTheManifest) {
