@@ -37,8 +37,7 @@ namespace {
 using devices::Bytes;
 
 double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 // Counts the bytes a transport moves.
@@ -204,8 +203,8 @@ int main(int argc, char** argv) {
   const auto store = std::filesystem::temp_directory_path() / "wearknit-bench-store";
   const double mb = job.value().bytes.size() / 1e6;
   std::printf("job %s: %.2f MB, %u rows\n", job.value().name.c_str(), mb, job.value().row_count());
-  std::printf("%-4s %-9s %9s %9s %8s %13s %11s %9s\n", "link", "mode", "seconds", "MB/s",
-              "x raw", "wire out B", "wire in B", "overhead");
+  std::printf("%-4s %-9s %9s %9s %8s %13s %11s %9s\n", "link", "mode", "seconds", "MB/s", "x raw",
+              "wire out B", "wire in B", "overhead");
   for (const bool pty : {false, true}) {
     std::vector<Run> raw_runs, proto_runs, corrupt_runs;
     for (int i = 0; i < repeats; ++i) {
@@ -214,10 +213,11 @@ int main(int argc, char** argv) {
       corrupt_runs.push_back(protocol_run(job.value(), pty, 0.01, store));
     }
     const Run raw = median(raw_runs);
-    for (const auto& [mode, run] : {std::pair{"raw", raw}, std::pair{"protocol", median(proto_runs)},
-                                    std::pair{"corrupt1%", median(corrupt_runs)}}) {
-      std::printf("%-4s %-9s %9.3f %9.1f %8.2f %13llu %11llu %8.2f%%\n", pty ? "pty" : "tcp",
-                  mode, run.seconds, mb / run.seconds, run.seconds / raw.seconds,
+    for (const auto& [mode, run] :
+         {std::pair{"raw", raw}, std::pair{"protocol", median(proto_runs)},
+          std::pair{"corrupt1%", median(corrupt_runs)}}) {
+      std::printf("%-4s %-9s %9.3f %9.1f %8.2f %13llu %11llu %8.2f%%\n", pty ? "pty" : "tcp", mode,
+                  run.seconds, mb / run.seconds, run.seconds / raw.seconds,
                   static_cast<unsigned long long>(run.wire_out),
                   static_cast<unsigned long long>(run.wire_in),
                   100.0 * (double(run.wire_out + run.wire_in) / job.value().bytes.size() - 1));

@@ -22,7 +22,8 @@ int run_devices(const std::vector<std::string>& args, Context& context) {
   po::options_description options("options");
   po::positional_options_description positional;
   po::variables_map values;
-  if (auto code = parse_options(args, *find_verb("devices"), options, positional, values, context)) {
+  if (auto code =
+          parse_options(args, *find_verb("devices"), options, positional, values, context)) {
     return *code;
   }
   int status = kExitOk;
@@ -50,10 +51,11 @@ int run_devices(const std::vector<std::string>& args, Context& context) {
   } else {
     for (const devices::UsbDeviceInfo& d : usb.value()) {
       context.out << "  usb://" << hex4(d.vid) << ':' << hex4(d.pid)
-                  << (d.serial_number.empty() ? "" : "/" + d.serial_number) << "  bus "
-                  << d.bus << " device " << d.address;
+                  << (d.serial_number.empty() ? "" : "/" + d.serial_number) << "  bus " << d.bus
+                  << " device " << d.address;
       if (!d.product.empty() || !d.manufacturer.empty()) {
-        context.out << "  " << d.product << (d.manufacturer.empty() ? "" : " (" + d.manufacturer + ")");
+        context.out << "  " << d.product
+                    << (d.manufacturer.empty() ? "" : " (" + d.manufacturer + ")");
       }
       context.out << '\n';
     }

@@ -11,7 +11,9 @@ namespace po = boost::program_options;
 
 namespace {
 std::atomic<bool> stop_requested{false};
-extern "C" void request_stop(int) { stop_requested.store(true); }
+extern "C" void request_stop(int) {
+  stop_requested.store(true);
+}
 }  // namespace
 
 devices::JobCheckers project_job_checkers() {
@@ -40,9 +42,9 @@ int run_mock_device(const std::vector<std::string>& args, Context& context) {
       "folder for received jobs and the device's counters")(
       "fault", po::value<std::string>(&fault_text),
       "corrupt=P,drop=P,dup=P,disconnect-every=N,reboot-every=N,stall-ms=N,"
-      "yarn-break-at=ROW,stop-at=ROW")(
-      "rows-per-s", po::value<double>(&rows_per_s)->default_value(200),
-      "knitting speed; 0 knits a verified job at once")(
+      "yarn-break-at=ROW,stop-at=ROW")("rows-per-s",
+                                       po::value<double>(&rows_per_s)->default_value(200),
+                                       "knitting speed; 0 knits a verified job at once")(
       "buffer-rows", po::value<std::uint32_t>(&buffer_rows)->default_value(32),
       "rows the device buffers before they reach its store")(
       "seed", po::value<std::uint64_t>(&seed)->default_value(1), "seed of the fault injector")(

@@ -15,8 +15,7 @@ namespace po = boost::program_options;
 namespace {
 
 double seconds_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 std::string clock_text(double seconds) {
@@ -34,13 +33,29 @@ std::string clock_text(double seconds) {
 // Rows per second over a sliding start point; ETA from the phase's rate.
 class ProgressPrinter {
  public:
-  ProgressPrinter(Context& context, bool quiet) : context_(context), quiet_(quiet) {}
+  ProgressPrinter(Context& context, bool quiet, std::string uri)
+      : context_(context), quiet_(quiet), uri_(std::move(uri)) {}
 
   void update(const devices::Progress& p, const std::string& note) {
     const double now = seconds_now();
     if (!note.empty()) {
       end_bar();
       context_.err << "wearknit send: " << note << '\n';
+    }
+    if (p.device_state != last_state_) {
+      // The operator must act on these; say so even with --quiet.
+      if (p.device_state == devices::JobState::Alarm) {
+        end_bar();
+        context_.err << "wearknit send: the machine stopped (" << devices::to_string(p.alarm)
+                     << ") after row " << p.rows_knitted << " of " << p.rows_total
+                     << "; clear it and run `wearknit status --to " << uri_ << " --continue`\n";
+      } else if (p.device_state == devices::JobState::Paused) {
+        end_bar();
+        context_.err << "wearknit send: the job is paused at the machine after row "
+                     << p.rows_knitted << "; `wearknit status --to " << uri_
+                     << " --continue` resumes it\n";
+      }
+      last_state_ = p.device_state;
     }
     if (quiet_) return;
     if (start_ < 0) start_ = now;
@@ -56,9 +71,9 @@ class ProgressPrinter {
     } else {
       // Plain lines: at most one a second, plus every phase change.
       if (!changed || (now - last_print_ < 1.0 && p.phase == last_.phase)) return;
-      context_.out << "progress: " << devices::to_string(p.phase) << ", " << p.rows_received
-                   << "/" << p.rows_total << " rows received, " << p.rows_knitted << "/"
-                   << p.rows_total << " knitted, ETA " << clock_text(eta(p, now)) << '\n';
+      context_.out << "progress: " << devices::to_string(p.phase) << ", " << p.rows_received << "/"
+                   << p.rows_total << " rows received, " << p.rows_knitted << "/" << p.rows_total
+                   << " knitted, ETA " << clock_text(eta(p, now)) << '\n';
       context_.out.flush();
     }
     last_ = p;
@@ -98,14 +113,15 @@ class ProgressPrinter {
     }
     context_.out << "\r[" << bar << "] " << p.rows_knitted << "/" << p.rows_total
                  << " rows knitted (" << p.rows_received << " received) "
-                 << devices::to_string(p.phase) << "  ETA " << clock_text(eta(p, now))
-                 << "   ";
+                 << devices::to_string(p.phase) << "  ETA " << clock_text(eta(p, now)) << "   ";
     context_.out.flush();
     bar_shown_ = true;
   }
 
   Context& context_;
   bool quiet_;
+  std::string uri_;
+  devices::JobState last_state_ = devices::JobState::Idle;
   devices::Progress last_;
   double last_print_ = -1e9;
   double start_ = -1;
@@ -152,8 +168,7 @@ int run_send(const std::vector<std::string>& args, Context& context) {
     }
     context.out << "stored " << uri.value().path << "/" << job.value().name << " ("
                 << job.value().bytes.size() << " bytes, " << job.value().row_count()
-                << " rows, read back with SHA-256 " << devices::to_hex(job.value().sha256)
-                << ")\n";
+                << " rows, read back with SHA-256 " << devices::to_hex(job.value().sha256) << ")\n";
     return kExitOk;
   }
   devices::SendOptions send_options;
@@ -161,11 +176,10 @@ int run_send(const std::vector<std::string>& args, Context& context) {
   devices::LinkOptions link;
   link.max_attempts = std::max(attempts, 0);
   link.loopback_checkers = project_job_checkers();
-  ProgressPrinter printer(context, values.count("quiet") != 0);
-  auto report = devices::send_job(uri.value(), job.value(), send_options, link,
-                                  [&](const devices::Progress& p, const std::string& note) {
-                                    printer.update(p, note);
-                                  });
+  ProgressPrinter printer(context, values.count("quiet") != 0, to);
+  auto report = devices::send_job(
+      uri.value(), job.value(), send_options, link,
+      [&](const devices::Progress& p, const std::string& note) { printer.update(p, note); });
   printer.end_bar();
   if (!report) {
     context.err << "wearknit send: " << job_path << ": " << report.error().text() << '\n';
@@ -179,10 +193,9 @@ int run_send(const std::vector<std::string>& args, Context& context) {
   if (!r.message.empty()) context.out << r.message << '\n';
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.2f", r.seconds);
-  context.out << "done: " << job.value().name << " -> " << to << ": "
-              << r.progress.rows_knitted << "/" << r.progress.rows_total
-              << " rows knitted (device confirmed), " << r.reconnects << " reconnects, "
-              << seconds << " s\n";
+  context.out << "done: " << job.value().name << " -> " << to << ": " << r.progress.rows_knitted
+              << "/" << r.progress.rows_total << " rows knitted (device confirmed), "
+              << r.reconnects << " reconnects, " << seconds << " s\n";
   return kExitOk;
 }
 

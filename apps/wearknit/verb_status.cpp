@@ -30,8 +30,8 @@ void print_status(Context& context, const std::string& uri, const devices::Devic
                 << ", \"reason\": " << knitout::json_quote(s.reason) << "}\n";
     return;
   }
-  context.out << "device " << uri << ": protocol " << int(s.version) << ", buffer "
-              << s.buffer_free << "/" << s.buffer_capacity << " rows free\n";
+  context.out << "device " << uri << ": protocol " << int(s.version) << ", buffer " << s.buffer_free
+              << "/" << s.buffer_capacity << " rows free\n";
   if (s.state == devices::JobState::Idle) {
     context.out << "no job\n";
     return;
@@ -63,8 +63,8 @@ int run_status(const std::vector<std::string>& args, Context& context) {
     context.err << "wearknit status: " << uri.error().text() << '\n';
     return kExitUsage;
   }
-  const int commands = static_cast<int>(values.count("pause") + values.count("continue") +
-                                        values.count("cancel"));
+  const int commands =
+      static_cast<int>(values.count("pause") + values.count("continue") + values.count("cancel"));
   if (commands > 1) {
     context.err << "wearknit status: give at most one of --pause, --continue, --cancel\n";
     return kExitUsage;
@@ -99,8 +99,7 @@ int run_status(const std::vector<std::string>& args, Context& context) {
                     : devices::send_command(uri.value(), devices::Command::Cancel, link);
   if (!result) {
     context.err << "wearknit status: " << result.error().text() << '\n';
-    return result.error().error_class == devices::ErrorClass::Protocol ? kExitInvalid
-                                                                        : kExitUsage;
+    return result.error().error_class == devices::ErrorClass::Protocol ? kExitInvalid : kExitUsage;
   }
   print_status(context, to, result.value(), values.count("json") != 0);
   return kExitOk;

@@ -1,6 +1,9 @@
 // The device verbs end to end: mock-device, send, status, devices.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "tests/devices/background_wearknit.hpp"
 #include "tests/devices/device_test_support.hpp"
 #include "tests/test_support.hpp"
@@ -42,6 +45,35 @@ TEST_F(CliDevicesTest, TheDoneWhenCommandsStoreTheDatIdenticalAndKnitEveryRowOnc
       << log;
   EXPECT_EQ(test::read_text(dir_ / "D" / "J.dat"), test::read_text(dir_ / "J.dat"));
   EXPECT_NE(test::read_text(dir_ / "D" / "J.dat.manifest.json").find(to_hex(job.value().sha256)),
+            std::string::npos);
+}
+
+TEST_F(CliDevicesTest, AYarnBreakStopsTheJobUntilStatusContinues) {
+  wearknit::test::write_file(dir_ / "a.k", test::sheet_knitout(6, 40));
+  test::BackgroundWearknit mock("mock-device --listen tcp://127.0.0.1:0 --store " + path("D") +
+                                " --fault yarn-break-at=10 --exit-when-done --no-sync"
+                                " --rows-per-s 400");
+  ASSERT_FALSE(mock.uri().empty()) << mock.first_line();
+  test::BackgroundWearknit send("send -q " + path("a.k") + " --to " + mock.uri());
+  std::string status;
+  for (int i = 0; i < 200; ++i) {
+    status = run_wearknit("status --json --to " + mock.uri()).out;
+    if (status.find("\"state\": \"alarm\"") != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_NE(status.find("\"alarm\": \"yarn break\""), std::string::npos) << status;
+  EXPECT_NE(status.find("\"rows_knitted\": 10,"), std::string::npos) << status;
+  const auto resumed = run_wearknit("status --continue --to " + mock.uri());
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  const std::string sent = send.first_line() + "\n" + send.finish();
+  EXPECT_NE(sent.find("wearknit send: the machine stopped (yarn break) after row 10 of 42; clear "
+                      "it and run `wearknit status --to " +
+                      mock.uri() + " --continue`"),
+            std::string::npos)
+      << sent;
+  EXPECT_NE(sent.find("done: a.k -> " + mock.uri() + ": 42/42 rows knitted"), std::string::npos)
+      << sent;
+  EXPECT_NE(mock.finish().find("job a.k: done: knitted 42/42 rows, each exactly once"),
             std::string::npos);
 }
 
