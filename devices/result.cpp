@@ -1,5 +1,6 @@
 #include "devices/result.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -55,7 +56,9 @@ void debug_line(std::string_view text) {
   // One write per line so lines from the mock's threads do not interleave.
   static std::mutex mutex;
   std::lock_guard lock(mutex);
-  std::fprintf(stderr, "wearknit-dev: %.*s\n", static_cast<int>(text.size()), text.data());
+  const double t =
+      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  std::fprintf(stderr, "wearknit-dev: %.6f %.*s\n", t, static_cast<int>(text.size()), text.data());
 }
 
 }  // namespace devices
