@@ -80,6 +80,12 @@ class ProgressPrinter {
     last_print_ = now;
   }
 
+  // Shows the final counters (on a terminal the bar may lag by 0.1 s).
+  void finish(const devices::Progress& p) {
+    if (!quiet_ && context_.out_is_terminal) draw_bar(p, seconds_now());
+    end_bar();
+  }
+
   void end_bar() {
     if (bar_shown_) {
       context_.out << '\n';
@@ -180,7 +186,11 @@ int run_send(const std::vector<std::string>& args, Context& context) {
   auto report = devices::send_job(
       uri.value(), job.value(), send_options, link,
       [&](const devices::Progress& p, const std::string& note) { printer.update(p, note); });
-  printer.end_bar();
+  if (report) {
+    printer.finish(report.value().progress);
+  } else {
+    printer.end_bar();
+  }
   if (!report) {
     context.err << "wearknit send: " << job_path << ": " << report.error().text() << '\n';
     return kExitUsage;

@@ -146,6 +146,22 @@ TEST_F(CliDevicesTest, UsageErrorsSayWhatIsWrong) {
   EXPECT_EQ(usb.exit_code, 2);
 }
 
+TEST_F(CliDevicesTest, OnATerminalSendDrawsAProgressBar) {
+  if (std::system("command -v script >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "needs util-linux `script` to give send a terminal";
+  }
+  wearknit::test::write_file(dir_ / "t.k", test::sheet_knitout(6, 10));
+  // `script` runs send with a pseudo-terminal as its stdout.
+  const auto r = wearknit::test::run_wearknit(
+      "--version >/dev/null; script -qec \"'" + std::string(WEARKNIT_BINARY) + "' send " +
+      path("t.k") + " --to loopback:" + (dir_ / "lb").string() + "\" /dev/null");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\r[##############################] 12/12 rows knitted (12 received) done"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("progress: "), std::string::npos) << r.out;  // no plain lines
+}
+
 TEST_F(CliDevicesTest, DevicesListsSerialPortsAndUsbDevices) {
   const auto r = run_wearknit("devices");
   EXPECT_EQ(r.exit_code, 0) << r.err;
