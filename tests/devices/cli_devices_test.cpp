@@ -162,6 +162,21 @@ TEST_F(CliDevicesTest, OnATerminalSendDrawsAProgressBar) {
   EXPECT_EQ(r.out.find("progress: "), std::string::npos) << r.out;  // no plain lines
 }
 
+TEST_F(CliDevicesTest, DeviceDebugTracesFramesAndDecisions) {
+  wearknit::test::write_file(dir_ / "d.k", test::sheet_knitout(4, 4));
+  const auto r = wearknit::test::run_wearknit(
+      "--version >/dev/null; WEARKNIT_DEVICE_DEBUG=1 '" + std::string(WEARKNIT_BINARY) +
+      "' send -q " + path("d.k") + " --to loopback:" + (dir_ / "lb").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find(" host -> HELLO job=0 seq=1 len=6\n"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" device: job d.k: manifest accepted (knitout, "), std::string::npos);
+  EXPECT_NE(r.err.find(" host <- STATUS job="), std::string::npos);
+  EXPECT_EQ(r.err.rfind("wearknit-dev: ", 0), 0u);
+  const auto quiet =
+      run_wearknit("send -q " + path("d.k") + " --to loopback:" + (dir_ / "lb2").string());
+  EXPECT_EQ(quiet.err, "");
+}
+
 TEST_F(CliDevicesTest, DevicesListsSerialPortsAndUsbDevices) {
   const auto r = run_wearknit("devices");
   EXPECT_EQ(r.exit_code, 0) << r.err;
