@@ -100,8 +100,7 @@ void DeviceEngine::event(const std::string& text) const {
 
 Outcome DeviceEngine::load() {
   const auto path = state_dir() / "state.json";
-  buffer_.clear();
-  buffered_bytes_ = 0;
+  clear_buffers();
   knit_origin_s_ = -1;
   if (!std::filesystem::exists(path)) return Ok{};
   nlohmann::json j;
@@ -191,7 +190,7 @@ StatusMessage DeviceEngine::status() const {
   StatusMessage s;
   s.capabilities = kCapPause | kCapCancel | kCapAlarms | kCapResume;
   s.buffer_capacity = config_.buffer_rows;
-  s.buffer_free = config_.buffer_rows - static_cast<std::uint32_t>(buffer_.size());
+  s.buffer_free = free_rows();
   s.max_row_bytes = static_cast<std::uint32_t>(kMaxPayload);
   s.state = state();
   s.alarm = alarm_;
@@ -208,8 +207,7 @@ StatusMessage DeviceEngine::status() const {
 void DeviceEngine::refuse(std::string reason) {
   reason_ = std::move(reason);
   state_ = JobState::Refused;
-  buffer_.clear();
-  buffered_bytes_ = 0;
+  clear_buffers();
   std::error_code ec;
   std::filesystem::remove(part_path(), ec);
   save();
@@ -243,8 +241,7 @@ void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& 
       yarn_break_fired_ = false;
       stop_fired_ = false;
       reason_.clear();
-      buffer_.clear();
-      buffered_bytes_ = 0;
+      clear_buffers();
       std::error_code ec;
       std::filesystem::remove(part_path(), ec);
       std::filesystem::remove(knit_log_path(job_id_), ec);
@@ -266,18 +263,13 @@ void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& 
       return;
     }
     case FrameType::Row: {
-      if (frame.job_id == job_id_ && state_ == JobState::Receiving && frame.seq == accepted() &&
-          buffer_.size() < config_.buffer_rows && frame.seq < manifest_.rows &&
-          bytes_received_ + buffered_bytes_ + frame.payload.size() <= manifest_.size) {
-        buffered_bytes_ += frame.payload.size();
-        buffer_.push_back(frame.payload);
-        // A full buffer goes to the store at once, so the acknowledgement
-        // can open the window again without the host having to ask.
-        if (buffer_.size() == config_.buffer_rows) flush_buffer();
+      if (frame.job_id == job_id_ && state_ == JobState::Receiving && frame.seq < manifest_.rows &&
+          frame.payload.size() <= manifest_.size) {
+        take_row(frame.seq, frame.payload);
       }
-      // Cumulative: duplicates and gaps are answered, never applied.
-      AckMessage ack{state(), accepted(), knitted_,
-                     config_.buffer_rows - static_cast<std::uint32_t>(buffer_.size())};
+      // Cumulative: duplicates are answered, never applied; a row past a
+      // gap waits in the buffer until the gap is filled.
+      AckMessage ack{state(), accepted(), knitted_, free_rows()};
       replies.push_back(Frame{FrameType::Ack, 0, job_id_, frame.seq, encode(ack)});
       return;
     }
@@ -307,8 +299,7 @@ void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& 
             break;
           case Command::Cancel:
             state_ = JobState::Cancelled;
-            buffer_.clear();
-            buffered_bytes_ = 0;
+            clear_buffers();
             {
               std::error_code ec;
               std::filesystem::remove(part_path(), ec);
@@ -327,6 +318,48 @@ void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& 
     case FrameType::Ack:
       return;  // a device does not take device messages
   }
+}
+
+void DeviceEngine::clear_buffers() {
+  buffer_.clear();
+  buffered_bytes_ = 0;
+  ahead_.clear();
+  ahead_bytes_ = 0;
+}
+
+std::uint32_t DeviceEngine::free_rows() const {
+  const std::size_t held = buffer_.size() + ahead_.size();
+  return held >= config_.buffer_rows ? 0 : config_.buffer_rows - static_cast<std::uint32_t>(held);
+}
+
+void DeviceEngine::take_row(std::uint32_t row, const Bytes& payload) {
+  const std::uint32_t next = accepted();
+  if (row < next || ahead_.count(row) != 0) return;  // a duplicate
+  const std::uint64_t held = bytes_received_ + buffered_bytes_ + ahead_bytes_;
+  if (held + payload.size() > manifest_.size) return;  // cannot be part of this job
+  if (row == next) {
+    // The row everything waits for is taken even into a full buffer (the
+    // rows held ahead of it then move on), so the buffer cannot jam.
+    if (free_rows() == 0 && ahead_.empty()) return;
+    buffered_bytes_ += payload.size();
+    buffer_.push_back(payload);
+    // Rows that arrived ahead of it now follow in order.
+    for (auto it = ahead_.find(accepted()); it != ahead_.end(); it = ahead_.find(accepted())) {
+      ahead_bytes_ -= it->second.size();
+      buffered_bytes_ += it->second.size();
+      buffer_.push_back(std::move(it->second));
+      ahead_.erase(it);
+    }
+  } else {
+    // Past a gap: held (selective repeat) while there is room, so one lost
+    // row costs one resend, not the whole window.
+    if (free_rows() == 0 || row >= next + config_.buffer_rows) return;
+    ahead_bytes_ += payload.size();
+    ahead_.emplace(row, payload);
+  }
+  // A full buffer goes to the store at once, so the acknowledgement can
+  // open the window again without the host having to ask.
+  if (buffer_.size() + ahead_.size() >= config_.buffer_rows) flush_buffer();
 }
 
 void DeviceEngine::flush_buffer() {

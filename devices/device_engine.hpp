@@ -9,9 +9,9 @@
 //   .wearknit-device/job-ID.part      the rows received so far, in order
 //   .wearknit-device/job-ID.knitlog   one line per knitted row: its index
 // Rows pass through a RAM buffer of `buffer_rows` rows on their way to the
-// spool (moved on every tick, and at once when full); a reboot loses the
-// buffer and nothing else. Acknowledgements announce the buffer's free room:
-// the host's window. A job is knitted only
+// spool (moved on every tick, and at once when full); rows that arrive past a
+// gap wait there for the missing one. A reboot loses the buffer and nothing
+// else. Acknowledgements announce the buffer's free room: the host's window. A job is knitted only
 // after all of it arrived and its size, SHA-256, row count and the format's
 // checker agreed; knitting then advances at `rows_per_s` and the knit log is
 // the knitted counter, so a row is never knitted twice across restarts.
@@ -21,6 +21,7 @@
 #include <deque>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,9 @@ class DeviceEngine {
   void event(const std::string& text) const;
   std::uint32_t accepted() const { return received_ + static_cast<std::uint32_t>(buffer_.size()); }
   void flush_buffer();
+  void clear_buffers();
+  std::uint32_t free_rows() const;
+  void take_row(std::uint32_t row, const Bytes& payload);
   void verify_complete_job();
   void knit(double now_s);
   void refuse(std::string reason);
@@ -97,8 +101,10 @@ class DeviceEngine {
   std::uint64_t jobs_done_ = 0;
   std::uint64_t rows_knitted_total_ = 0;
   // RAM only.
-  std::deque<Bytes> buffer_;
+  std::deque<Bytes> buffer_;  // rows accepted() - buffer_.size() .. accepted() - 1
   std::uint64_t buffered_bytes_ = 0;
+  std::map<std::uint32_t, Bytes> ahead_;  // rows that arrived past a gap
+  std::uint64_t ahead_bytes_ = 0;
   double knit_origin_s_ = -1;
   std::uint32_t knit_origin_rows_ = 0;
 };

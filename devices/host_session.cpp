@@ -103,6 +103,7 @@ void HostSession::poll(double now_s) {
         debug_line("host: retransmission timeout, back to row " + std::to_string(base_));
         next_ = base_;
         last_advance_s_ = now_s;
+        recovering_ = false;
         rto_s_ = std::min(rto_s_ * 2, options_.max_rto_s);
         if (limit_ <= base_) limit_ = base_ + 1;  // probe with one row
       }
@@ -122,6 +123,12 @@ void HostSession::poll(double now_s) {
     case Phase::Failed:
       return;
   }
+}
+
+void HostSession::resend_row(std::uint32_t row) {
+  const auto bytes = job_.row(row);
+  send(FrameType::Row, row, Bytes(bytes.begin(), bytes.end()));
+  ++progress_.rows_sent;
 }
 
 void HostSession::fill_window(double now_s) {
@@ -170,17 +177,26 @@ void HostSession::apply_counters(JobState state, std::uint32_t received, std::ui
     last_advance_s_ = now_s;
     rto_s_ = options_.rto_s;
     duplicate_acks_ = 0;
-    fast_retransmitted_ = false;
     if (next_ < base_) next_ = base_;
+    if (recovering_ && base_ < recover_until_) {
+      // The device filled one gap and still waits: the next row in line was
+      // lost too. Resend it alone (NewReno's partial acknowledgement).
+      resend_row(base_);
+    } else {
+      recovering_ = false;
+    }
   } else if (received < base_) {
     // The device lost rows it had accepted (a power cycle): resend from its count.
     base_ = next_ = received;
     last_advance_s_ = now_s;
-  } else if (next_ > base_ && ++duplicate_acks_ >= 3 && !fast_retransmitted_) {
-    // Rows after a lost one keep getting the same count back: resend now
-    // rather than wait for the timeout.
-    next_ = base_;
-    fast_retransmitted_ = true;
+    recovering_ = false;
+  } else if (next_ > base_ && ++duplicate_acks_ >= 3 && !recovering_) {
+    // Rows after a lost one keep getting the same count back: the device
+    // holds them and waits for the missing row. Resend that row now rather
+    // than wait for the timeout.
+    resend_row(base_);
+    recovering_ = true;
+    recover_until_ = next_;
   }
   limit_ = received + free;
   progress_.rows_received = base_;

@@ -5,8 +5,9 @@
 //
 // Rules it keeps: it resumes from the device's counters, never from its own
 // memory; it sends a row only inside the window the device's free buffer
-// allows; it retransmits from the device's cumulative count after a
-// timeout (doubling, capped) or three duplicate acknowledgements; and the
+// allows; it resends the missing row alone after three duplicate
+// acknowledgements (the device holds rows past a gap) and goes back to the
+// device's cumulative count after a timeout (doubling, capped); and the
 // job is done only when a STATUS says every row is knitted.
 #pragma once
 
@@ -75,6 +76,7 @@ class HostSession {
   void apply_state(const StatusMessage& status, double now_s);
   void fail(std::string message);
   void fill_window(double now_s);
+  void resend_row(std::uint32_t row);
 
   const Job& job_;
   SendOptions options_;
@@ -96,7 +98,8 @@ class HostSession {
   double last_advance_s_ = 0;
   double last_probe_s_ = 0;
   int duplicate_acks_ = 0;
-  bool fast_retransmitted_ = false;
+  bool recovering_ = false;          // a lost row was resent on duplicate acks
+  std::uint32_t recover_until_ = 0;  // ... and rows up to here were in flight then
   Progress progress_;
 };
 

@@ -86,9 +86,33 @@ TEST_F(DeviceEngineTest, DuplicatesAndGapsAreAnsweredButNeverApplied) {
   const auto row = [&](std::uint32_t r) { return Bytes(job.row(r).begin(), job.row(r).end()); };
   EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 0, row(0))[0]).rows_received, 1u);
   EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 0, row(0))[0]).rows_received, 1u);  // dup
-  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 2, row(2))[0]).rows_received, 1u);  // gap
+  const AckMessage gap = ack_of(call(*e, FrameType::Row, 7, 2, row(2))[0]);
+  EXPECT_EQ(gap.rows_received, 1u);  // row 2 is held, not counted
+  EXPECT_EQ(gap.buffer_free, 2u);
+  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 2, row(2))[0]).buffer_free, 2u);    // held once
   EXPECT_EQ(ack_of(call(*e, FrameType::Row, 8, 1, row(1))[0]).rows_received, 1u);  // other job
-  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 1, row(1))[0]).rows_received, 2u);
+  // The missing row arrives: the held one follows it.
+  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 1, row(1))[0]).rows_received, 3u);
+  e->tick(now_);
+  EXPECT_EQ(test::read_text(store_ / ".wearknit-device" / "job-7.part"),
+            std::string(job.bytes.begin(), job.bytes.begin() + job.row_offsets[3]));
+}
+
+TEST_F(DeviceEngineTest, RowsPastAGapAreHeldOnlyWithinTheBuffer) {
+  auto e = open(/*buffer_rows=*/3);
+  const Job job = test::make_sheet_job("s.k", 4, 8);
+  call(*e, FrameType::Manifest, 7, 1, encode(job.manifest()));
+  const auto row = [&](std::uint32_t r) { return Bytes(job.row(r).begin(), job.row(r).end()); };
+  call(*e, FrameType::Row, 7, 1, row(1));
+  const AckMessage held = ack_of(call(*e, FrameType::Row, 7, 2, row(2))[0]);
+  EXPECT_EQ(held.rows_received, 0u);
+  EXPECT_EQ(held.buffer_free, 1u);
+  // Row 3 lies past the buffer's reach from row 0: not taken.
+  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 3, row(3))[0]).buffer_free, 1u);
+  const AckMessage filled = ack_of(call(*e, FrameType::Row, 7, 0, row(0))[0]);
+  EXPECT_EQ(filled.rows_received, 3u);
+  EXPECT_EQ(filled.buffer_free, 3u);  // rows 0-2 moved to the store
+  EXPECT_EQ(ack_of(call(*e, FrameType::Row, 7, 3, row(3))[0]).rows_received, 4u);
 }
 
 TEST_F(DeviceEngineTest, WindowIsTheFreeBuffer) {
