@@ -211,7 +211,7 @@ TEST(FaultInjectionTest, EveryRowArrivesIntactAndIsKnittedExactlyOnce) {
   std::filesystem::remove_all(root);
 }
 
-TEST(FaultInjectionTest, TheDefaultFaultsOfTheDoneWhenCommandFinishAFiftyRowJob) {
+TEST(FaultInjectionTest, TheDoneWhenFaultsFinishATwoHundredRowJob) {
   // corrupt=0.01,drop=0.01,dup=0.01,disconnect-every=500 on a bigger job.
   const Job job = test::make_sheet_job("big.k", 12, 200);
   FaultSpec spec;
