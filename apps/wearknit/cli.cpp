@@ -11,6 +11,12 @@ namespace po = boost::program_options;
 const std::vector<Verb>& verbs() {
   static const std::vector<Verb> kVerbs = {
       {"fmt", "fmt FILE.k [-o OUT.k] [--check]", "write a knitout file in canonical form", run_fmt},
+      {"validate", "validate FILE.k... [--machine M] [--werror] [--format text|json|junit|github]",
+       "run every instruction through the needle-bed virtual machine", run_validate},
+      {"simulate",
+       "simulate FILE.k [--stats] [--json] [--bed-view OUT.png|OUT.svg] "
+       "[--knit-graph OUT.json] [--machine M]",
+       "dry run: statistics, estimated machine time, bed view, knit graph", run_simulate},
       {"demo", "demo [-o DIR]", "run the built-in example end to end and say what to open",
        run_demo},
       {"devices", "devices", "list serial ports and USB devices", run_devices},

@@ -57,6 +57,8 @@ void print_diagnostics(Context& context, const std::vector<knitout::Diagnostic>&
 
 int run_fmt(const std::vector<std::string>& args, Context& context);
 int run_demo(const std::vector<std::string>& args, Context& context);
+int run_validate(const std::vector<std::string>& args, Context& context);
+int run_simulate(const std::vector<std::string>& args, Context& context);
 int run_send(const std::vector<std::string>& args, Context& context);
 int run_status(const std::vector<std::string>& args, Context& context);
 int run_devices(const std::vector<std::string>& args, Context& context);

@@ -1,8 +1,9 @@
 // wearknit demo: the main job on a built-in input, needing no data file.
 //
-// It generates a knitout sheet (plain and seed), reads it back through the
-// parser, writes the canonical form and checks that it reads back to the
-// same program; the later pipeline stages join this verb as they land.
+// It generates knitout sheets (plain and seed), reads them back through the
+// parser, writes the canonical form, checks that it reads back to the same
+// program, and runs every instruction through the needle-bed virtual machine
+// on the default machine profile.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "knitout/output_file.hpp"
 #include "knitout/parser.hpp"
 #include "knitout/writer.hpp"
+#include "simulators/bed/validate.hpp"
 
 namespace wearknit::cli {
 
@@ -66,15 +68,22 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
     knitout::DiagnosticSink reread_sink;
     const knitout::Program reread = knitout::parse_file(canonical_path, reread_sink);
     const bool round_trip = reread == program;
+    knitout::DiagnosticSink vm_sink;
+    const bed::Stats stats =
+        bed::validate(program, bed::default_profile(), vm_sink, generated_path);
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     knitout::print_text(context.err, sink.diagnostics());
-    const bool ok = !sink.has_errors() && !reread_sink.has_errors() && round_trip;
+    knitout::print_text(context.err, vm_sink.diagnostics());
+    const bool ok =
+        !sink.has_errors() && !reread_sink.has_errors() && round_trip && !vm_sink.has_errors();
     all_ok = all_ok && ok;
     context.out << "  " << sample.name << ": " << program.instructions.size() << " instructions, "
                 << sink.error_count() << " errors, " << sink.warning_count()
                 << " warnings, canonical form " << (round_trip ? "reads back identical" : "DIFFERS")
-                << " (" << ms << " ms)\n"
+                << "; virtual machine (" << bed::default_profile().name
+                << "): " << vm_sink.error_count() << " errors, " << vm_sink.warning_count()
+                << " warnings, " << stats.loops_made << " loops (" << ms << " ms)\n"
                 << "    " << generated_path << "\n    " << canonical_path << '\n';
   }
   context.out << (all_ok ? "demo finished: open the .k files above in a knitout viewer\n"

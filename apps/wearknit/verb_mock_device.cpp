@@ -1,9 +1,11 @@
 // wearknit mock-device: the loopback mock knitting machine on a real link.
 #include <csignal>
 #include <iostream>
+#include <sstream>
 
 #include "apps/wearknit/cli.hpp"
 #include "devices/mock_server.hpp"
+#include "simulators/bed/validate.hpp"
 
 namespace wearknit::cli {
 
@@ -18,9 +20,23 @@ extern "C" void request_stop(int) {
 
 devices::JobCheckers project_job_checkers() {
   devices::JobCheckers checkers;
-  // knitout: syntax through the project's parser. The needle-bed VM's
-  // validation belongs here as well once simulators/bed offers it.
-  checkers.knitout = devices::check_knitout_syntax;
+  // knitout: the needle-bed virtual machine, on the default machine profile:
+  // the parser's syntax errors (K codes) and the machine's (V codes) alike.
+  // Warnings do not stop a machine, so they do not refuse a job.
+  checkers.knitout = [](const std::string& name, std::span<const std::uint8_t> bytes) {
+    std::istringstream in(std::string(bytes.begin(), bytes.end()));
+    knitout::DiagnosticSink sink(20);
+    bed::validate_stream(in, name, bed::default_profile(), sink);
+    for (const knitout::Diagnostic& d : sink.sorted()) {
+      if (d.severity != knitout::Severity::Error) continue;
+      std::string reason = knitout::format(d);
+      if (sink.error_count() > 1) {
+        reason += " (and " + std::to_string(sink.error_count() - 1) + " more errors)";
+      }
+      return reason;
+    }
+    return std::string();
+  };
   // DAT: the device already checks the header, the run-length rows against
   // the width and the row count (devices::split_rows); a full decode by
   // backends/dat's reader plugs in here.

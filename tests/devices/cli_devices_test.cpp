@@ -112,17 +112,34 @@ TEST_F(CliDevicesTest, LoopbackSendThenStatusShowsTheJobDone) {
 }
 
 TEST_F(CliDevicesTest, AnInvalidJobIsRefusedByTheDeviceWithTheReason) {
-  wearknit::test::write_file(dir_ / "bad.k",
-                             ";!knitout-2\n;;Carriers: 1 2 3\ninhook 3\nknot + f1 3\n");
+  // Syntax: the parser's K code.
+  wearknit::test::write_file(dir_ / "bad.k", ";!knitout-2\n;;Carriers: 1 2 3\nknot + f1 3\n");
   const auto r =
       run_wearknit("send -q " + path("bad.k") + " --to loopback:" + (dir_ / "lb").string());
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err.rfind("wearknit send: " + (dir_ / "bad.k").string() +
-                            ": the device refused the job: bad.k:4:1: error: [K",
-                        0),
-            0u)
-      << r.err;
+  EXPECT_EQ(r.err, "wearknit send: " + (dir_ / "bad.k").string() +
+                       ": the device refused the job: bad.k:3:1: error: [K010] unknown "
+                       "operation 'knot'\n");
   EXPECT_FALSE(std::filesystem::exists(dir_ / "lb" / "bad.k"));
+  // Semantics: the needle-bed virtual machine's V code.
+  wearknit::test::write_file(dir_ / "sem.k", ";!knitout-2\n;;Carriers: 1 2 3\nknit + f1 3\n");
+  const auto v =
+      run_wearknit("send -q " + path("sem.k") + " --to loopback:" + (dir_ / "lb").string());
+  EXPECT_EQ(v.exit_code, 1);
+  EXPECT_EQ(v.err, "wearknit send: " + (dir_ / "sem.k").string() +
+                       ": the device refused the job: sem.k:3: error: [V004] carrier '3' is not "
+                       "in; bring it in with in or inhook before using it\n");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "lb" / "sem.k"));
+}
+
+TEST_F(CliDevicesTest, AValidTwinOfTheRefusedJobIsKnitted) {
+  wearknit::test::write_file(dir_ / "good.k",
+                             ";!knitout-2\n;;Carriers: 1 2 3\ninhook 3\nknit + f1 3\n"
+                             "releasehook 3\nouthook 3\n");
+  const auto r =
+      run_wearknit("send -q " + path("good.k") + " --to loopback:" + (dir_ / "lb").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "lb" / "good.k"));
 }
 
 TEST_F(CliDevicesTest, UsageErrorsSayWhatIsWrong) {
