@@ -14,9 +14,13 @@ const std::vector<Verb>& verbs() {
       {"validate", "validate FILE.k... [--machine M] [--werror] [--format text|json|junit|github]",
        "run every instruction through the needle-bed virtual machine", run_validate},
       {"simulate",
-       "simulate FILE.k [--stats] [--json] [--bed-view OUT.png|OUT.svg] "
+       "simulate FILE.k [--stats] [--passes] [--json] [--bed-view OUT.png|OUT.svg] "
        "[--knit-graph OUT.json] [--machine M]",
        "dry run: statistics, estimated machine time, bed view, knit graph", run_simulate},
+      {"dat", "dat FILE.k -o OUT.dat [--machine M] [--verify]",
+       "knitout -> Shima Seiki DAT (swg091n2), byte for byte as knitout-to-dat.js", run_dat},
+      {"dat-info", "dat-info FILE.dat [--passes] [--png OUT.png]",
+       "read a DAT back: size, position, passes, picture", run_dat_info},
       {"demo", "demo [-o DIR]", "run the built-in example end to end and say what to open",
        run_demo},
       {"devices", "devices", "list serial ports and USB devices", run_devices},

@@ -59,6 +59,8 @@ int run_fmt(const std::vector<std::string>& args, Context& context);
 int run_demo(const std::vector<std::string>& args, Context& context);
 int run_validate(const std::vector<std::string>& args, Context& context);
 int run_simulate(const std::vector<std::string>& args, Context& context);
+int run_dat(const std::vector<std::string>& args, Context& context);
+int run_dat_info(const std::vector<std::string>& args, Context& context);
 int run_send(const std::vector<std::string>& args, Context& context);
 int run_status(const std::vector<std::string>& args, Context& context);
 int run_devices(const std::vector<std::string>& args, Context& context);

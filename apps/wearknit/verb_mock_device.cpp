@@ -4,6 +4,8 @@
 #include <sstream>
 
 #include "apps/wearknit/cli.hpp"
+#include "backends/dat/format.hpp"
+#include "backends/dat/reader.hpp"
 #include "devices/mock_server.hpp"
 #include "simulators/bed/validate.hpp"
 
@@ -37,10 +39,18 @@ devices::JobCheckers project_job_checkers() {
     }
     return std::string();
   };
-  // DAT: the device already checks the header, the run-length rows against
-  // the width and the row count (devices::split_rows); a full decode by
-  // backends/dat's reader plugs in here.
-  checkers.dat = nullptr;
+  // DAT: the device itself checks the header, that the run-length rows add
+  // up to the width and the row count (devices::split_rows); the DAT reader
+  // decodes the raster and reads its layout (passes, option lines).
+  checkers.dat = [](const std::string& name, std::span<const std::uint8_t> bytes) {
+    knitout::DiagnosticSink sink(20);
+    const dat::Raster raster = dat::decode(bytes, name, sink);
+    if (!sink.has_errors()) (void)dat::read_layout(raster, name, sink);
+    for (const knitout::Diagnostic& d : sink.diagnostics()) {
+      if (d.severity == knitout::Severity::Error) return knitout::format(d);
+    }
+    return std::string();
+  };
   return checkers;
 }
 

@@ -132,6 +132,21 @@ TEST_F(CliDevicesTest, AnInvalidJobIsRefusedByTheDeviceWithTheReason) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "lb" / "sem.k"));
 }
 
+TEST_F(CliDevicesTest, ADatTheReaderCannotLayOutIsRefused) {
+  // Rows add up (10 pixels each), so only the DAT reader can object.
+  std::string dat(0x600, '\0');
+  dat[4] = 9;  // width 10
+  dat[6] = 1;  // height 2
+  dat += std::string("\0\x0a\0\x0a", 4);
+  wearknit::test::write_file(dir_ / "tiny.dat", dat);
+  const auto r =
+      run_wearknit("send -q " + path("tiny.dat") + " --to loopback:" + (dir_ / "lb").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "wearknit send: " + (dir_ / "tiny.dat").string() +
+                       ": the device refused the job: tiny.dat: error: [D046] a 10 x 2 raster "
+                       "is too small for the swg091n2 layout (at least 111 x 19)\n");
+}
+
 TEST_F(CliDevicesTest, AValidTwinOfTheRefusedJobIsKnitted) {
   wearknit::test::write_file(dir_ / "good.k",
                              ";!knitout-2\n;;Carriers: 1 2 3\ninhook 3\nknit + f1 3\n"

@@ -1,0 +1,160 @@
+#include "backends/dat/format.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+namespace dat {
+
+namespace {
+
+void put_u16(std::vector<std::uint8_t>& bytes, std::size_t offset, unsigned value) {
+  bytes[offset] = static_cast<std::uint8_t>(value & 0xFF);
+  bytes[offset + 1] = static_cast<std::uint8_t>((value >> 8) & 0xFF);
+}
+
+unsigned get_u16(std::span<const std::uint8_t> bytes, std::size_t offset) {
+  return static_cast<unsigned>(bytes[offset]) | (static_cast<unsigned>(bytes[offset + 1]) << 8);
+}
+
+}  // namespace
+
+void encode_row(std::span<const std::uint8_t> row, std::vector<std::uint8_t>& out) {
+  if (row.empty()) return;
+  // The run counter counts pixels equal to `colour` seen so far in the run;
+  // a pair is emitted when the colour changes, when the counter reaches 255,
+  // and at the row's last pixel. After 255 the counter restarts at 0 (not at
+  // 1), which is what makes the reference emit (colour, 0) pairs.
+  std::uint8_t colour = row[0];
+  int length = 0;
+  const std::size_t width = row.size();
+  for (std::size_t x = 0; x < width; ++x) {
+    const std::uint8_t next = row[x];
+    if (next == colour) ++length;
+    if (next != colour || length == kMaxRunLength || x + 1 == width) {
+      out.push_back(colour);
+      out.push_back(static_cast<std::uint8_t>(length));
+      colour = next;
+      length = length == kMaxRunLength ? 0 : 1;
+    }
+  }
+}
+
+std::vector<std::uint8_t> file_prefix(int width, int height) {
+  std::vector<std::uint8_t> bytes(kDataOffset, 0);
+  put_u16(bytes, 0, 0);
+  put_u16(bytes, 2, 0);
+  put_u16(bytes, 4, static_cast<unsigned>(width - 1));
+  put_u16(bytes, 6, static_cast<unsigned>(height - 1));
+  put_u16(bytes, 8, kHeaderMagic);
+  put_u16(bytes, 16, kHeaderMagic);
+  std::copy(kPalette.begin(), kPalette.end(), bytes.begin() + kPaletteOffset);
+  return bytes;
+}
+
+std::vector<std::uint8_t> encode(const Raster& raster) {
+  std::vector<std::uint8_t> bytes = file_prefix(raster.width, raster.height);
+  std::copy(raster.palette.begin(), raster.palette.end(), bytes.begin() + kPaletteOffset);
+  const auto width = static_cast<std::size_t>(raster.width);
+  for (int y = 0; y < raster.height; ++y) {
+    encode_row(std::span(raster.pixels).subspan(static_cast<std::size_t>(y) * width, width), bytes);
+  }
+  return bytes;
+}
+
+Raster decode(std::span<const std::uint8_t> bytes, std::string_view source,
+              knitout::DiagnosticSink& sink) {
+  auto fail = [&](std::string_view code, std::string message) {
+    sink.error(source, 0, 0, code, std::move(message));
+    return Raster{};
+  };
+  if (bytes.size() < kDataOffset) {
+    return fail("D040", "truncated DAT: " + std::to_string(bytes.size()) +
+                            " bytes, but header and palette alone take " +
+                            std::to_string(kDataOffset));
+  }
+  const unsigned x_min = get_u16(bytes, 0);
+  const unsigned y_min = get_u16(bytes, 2);
+  const unsigned x_max = get_u16(bytes, 4);
+  const unsigned y_max = get_u16(bytes, 6);
+  if (x_max < x_min || y_max < y_min) {
+    return fail("D041", "bad DAT header: x " + std::to_string(x_min) + ".." +
+                            std::to_string(x_max) + ", y " + std::to_string(y_min) + ".." +
+                            std::to_string(y_max) + " is an empty raster");
+  }
+  Raster raster;
+  raster.width = static_cast<int>(x_max - x_min + 1);
+  raster.height = static_cast<int>(y_max - y_min + 1);
+  std::copy(bytes.begin() + kPaletteOffset, bytes.begin() + kPaletteOffset + kPaletteBytes,
+            raster.palette.begin());
+
+  const std::span<const std::uint8_t> data = bytes.subspan(kDataOffset);
+  if (data.size() % 2 != 0) {
+    return fail("D043", "truncated DAT: run-length data has an odd number of bytes (" +
+                            std::to_string(data.size()) + "), the last pair is cut");
+  }
+  const std::uint64_t pixels =
+      static_cast<std::uint64_t>(raster.width) * static_cast<std::uint64_t>(raster.height);
+  // Each pair covers at most 255 pixels: a raster the data cannot fill is
+  // rejected before anything is allocated for it.
+  const std::uint64_t coverable = static_cast<std::uint64_t>(data.size() / 2) * kMaxRunLength;
+  if (pixels > coverable) {
+    return fail("D043", "truncated DAT: " + std::to_string(data.size() / 2) +
+                            " run-length pairs cannot fill a " + std::to_string(raster.width) +
+                            " x " + std::to_string(raster.height) + " raster");
+  }
+  raster.pixels.assign(static_cast<std::size_t>(pixels), 0);
+  std::size_t at = 0;  // next pixel
+  const auto width = static_cast<std::size_t>(raster.width);
+  std::size_t pair = 0;
+  for (; pair < data.size() / 2 && at < pixels; ++pair) {
+    const std::uint8_t colour = data[2 * pair];
+    const std::size_t length = data[2 * pair + 1];
+    const std::size_t row_end = (at / width + 1) * width;
+    if (at + length > row_end) {
+      return fail("D044", "corrupt DAT: the run at byte " + std::to_string(kDataOffset + 2 * pair) +
+                              " (" + std::to_string(length) + " pixels of colour " +
+                              std::to_string(colour) + ") crosses the end of row " +
+                              std::to_string(at / width));
+    }
+    std::fill_n(raster.pixels.begin() + static_cast<std::ptrdiff_t>(at), length, colour);
+    at += length;
+  }
+  if (at < pixels) {
+    return fail("D043", "truncated DAT: the data ends in row " + std::to_string(at / width) +
+                            " of " + std::to_string(raster.height) + " (" +
+                            std::to_string(pixels - at) + " pixels missing)");
+  }
+  // Zero-length pairs are part of the format (see encode_row); only other
+  // bytes after the last row are extra.
+  while (pair < data.size() / 2 && data[2 * pair + 1] == 0) ++pair;
+  if (pair < data.size() / 2) {
+    sink.warning(source, 0, 0, "D045",
+                 "DAT has " + std::to_string(data.size() - 2 * pair) +
+                     " bytes after the last row (from byte " +
+                     std::to_string(kDataOffset + 2 * pair) + "); they are ignored");
+  }
+  return raster;
+}
+
+std::vector<std::uint8_t> read_bytes(const std::string& path, knitout::DiagnosticSink& sink,
+                                     bool& ok) {
+  ok = false;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    sink.error(path, 0, 0, "D049", std::string("cannot open file: ") + std::strerror(errno));
+    return {};
+  }
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+  if (in.bad()) {
+    sink.error(path, 0, 0, "D049", "cannot read file");
+    return {};
+  }
+  ok = true;
+  return bytes;
+}
+
+}  // namespace dat
