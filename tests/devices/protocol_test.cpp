@@ -118,13 +118,13 @@ TEST(ProtocolTest, StatusRoundTrips) {
 TEST(ProtocolTest, RejectsTruncatedAndOverlongPayloads) {
   ManifestMessage m;
   m.name = "a.k";
-  Bytes bytes = encode(m);
+  const Bytes bytes = encode(m);
   ManifestMessage back;
   EXPECT_TRUE(decode(bytes, back));
-  bytes.push_back(0);
-  EXPECT_FALSE(decode(bytes, back));
-  bytes.resize(bytes.size() - 3);
-  EXPECT_FALSE(decode(bytes, back));
+  Bytes longer = bytes;
+  longer.push_back(0);
+  EXPECT_FALSE(decode(longer, back));
+  EXPECT_FALSE(decode(std::span(bytes).first(bytes.size() - 2), back));
   CommandMessage c;
   EXPECT_FALSE(decode(Bytes{9}, c));
 }
