@@ -30,6 +30,13 @@ const std::vector<Verb>& verbs() {
        run_wearability},
       {"schedule", "schedule DIR [--trials N | --time-budget S] [--pattern plain|seed] [--seed N]",
        "knitting schedule and knitout pieces for a plan folder's stitch mesh (§7)", run_schedule},
+      {"devices", "devices", "list serial ports and USB devices", run_devices},
+      {"send", "send JOB --to URI [--resume]",
+       "send a job (DAT or knitout) to a machine, with progress", run_send},
+      {"status", "status --to URI [--pause | --continue | --cancel] [--json]",
+       "show a machine's job and counters; pause, continue or cancel it", run_status},
+      {"mock-device", "mock-device --listen URI --store DIR [--fault SPEC] [--rows-per-s N]",
+       "the loopback mock knitting machine", run_mock_device},
   };
   return kVerbs;
 }

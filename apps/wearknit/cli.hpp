@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "devices/job.hpp"
 #include "knitout/diagnostic.hpp"
 
 namespace wearknit::cli {
@@ -62,5 +63,13 @@ int run_dat(const std::vector<std::string>& args, Context& context);
 int run_dat_info(const std::vector<std::string>& args, Context& context);
 int run_wearability(const std::vector<std::string>& args, Context& context);
 int run_schedule(const std::vector<std::string>& args, Context& context);
+int run_send(const std::vector<std::string>& args, Context& context);
+int run_status(const std::vector<std::string>& args, Context& context);
+int run_devices(const std::vector<std::string>& args, Context& context);
+int run_mock_device(const std::vector<std::string>& args, Context& context);
+
+// The checks a device runs on a received job before knitting it, made of the
+// project's own readers (verb_mock_device.cpp).
+devices::JobCheckers project_job_checkers();
 
 }  // namespace wearknit::cli

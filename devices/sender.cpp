@@ -1,0 +1,215 @@
+#include "devices/sender.hpp"
+
+#include <chrono>
+#include <random>
+#include <thread>
+
+#include "devices/debug.hpp"
+#include "devices/loopback.hpp"
+
+namespace devices {
+namespace {
+
+double seconds_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+void sleep_s(double s) {
+  std::this_thread::sleep_for(std::chrono::duration<double>(s));
+}
+
+Result<std::unique_ptr<Transport>> open_stream(const DeviceUri& uri, const LinkOptions& link) {
+  if (link.open) return link.open();
+  if (uri.kind == DeviceUri::Kind::Loopback) return open_loopback(uri.path, link.loopback_checkers);
+  return open_transport(uri);
+}
+
+Outcome write_frames(Transport& transport, std::vector<Frame> frames, int timeout_ms) {
+  if (frames.empty()) return Ok{};
+  Bytes wire;
+  for (const Frame& f : frames) {
+    if (debug_enabled()) debug_line("host -> " + describe(f));
+    const Bytes w = encode_wire(f);
+    wire.insert(wire.end(), w.begin(), w.end());
+  }
+  return transport.write_all(wire, timeout_ms);
+}
+
+// One request/response exchange on a fresh connection: repeats `request`
+// until a STATUS answers it; `accept` decides whether that answer is final.
+Result<DeviceStatus> exchange(
+    const DeviceUri& uri, const LinkOptions& link,
+    const std::function<Frame(std::uint32_t seq, const DeviceStatus* last)>& request,
+    const std::function<bool(const DeviceStatus&)>& accept) {
+  auto transport = open_stream(uri, link);
+  if (!transport) return transport.error();
+  SlipDecoder decoder;
+  std::uint8_t buffer[4096];
+  std::uint32_t seq = 0;
+  DeviceStatus last;
+  bool have_last = false;
+  for (int attempt = 0; attempt < 10; ++attempt) {
+    Frame f = request(++seq, have_last ? &last : nullptr);
+    f.seq = seq;
+    if (Outcome w = write_frames(*transport.value(), {f}, link.write_timeout_ms); !w) {
+      return w.error();
+    }
+    const double deadline = seconds_now() + 0.3;
+    bool answered = false;
+    while (!answered && seconds_now() < deadline) {
+      auto n = transport.value()->read_some(buffer, 50);
+      if (!n) return n.error();
+      decoder.feed(std::span(buffer, n.value()), [&](std::span<const std::uint8_t> raw) {
+        Frame reply;
+        StatusMessage status;
+        if (decode_frame(raw, reply) && reply.type == FrameType::Status && reply.seq == seq &&
+            decode(reply.payload, status)) {
+          last = DeviceStatus{reply.job_id, status};
+          have_last = true;
+          answered = true;
+        }
+      });
+    }
+    if (answered && accept(last)) return last;
+  }
+  return make_error(ErrorClass::Timeout, uri.text + ": the device did not answer");
+}
+
+}  // namespace
+
+Result<SendReport> send_job(const DeviceUri& uri, const Job& job, const SendOptions& options,
+                            const LinkOptions& link, const ProgressCallback& on_progress) {
+  std::uint32_t job_id = link.job_id;
+  if (job_id == 0) {
+    std::random_device random;
+    while (job_id == 0) job_id = random();
+  }
+  HostSession session(job, options, job_id);
+  const double start = seconds_now();
+  int failed_attempts = 0;
+  int connections = 0;
+  std::string last_problem;
+  SlipDecoder decoder;
+  std::vector<std::uint8_t> buffer(65536);
+  const auto note = [&](const std::string& text) {
+    if (on_progress) on_progress(session.progress(), text);
+  };
+  for (;;) {
+    auto opened = open_stream(uri, link);
+    if (!opened) {
+      last_problem = opened.error().text();
+      if (opened.error().error_class == ErrorClass::InvalidArgument ||
+          opened.error().error_class == ErrorClass::Unsupported) {
+        return opened.error();  // retrying cannot help
+      }
+    } else {
+      Transport& transport = *opened.value();
+      if (connections++ > 0) note("reconnected to " + uri.text);
+      decoder.reset();
+      session.on_connect(seconds_now());
+      Progress before = session.progress();
+      for (;;) {
+        if (Outcome w = write_frames(transport, session.take_outbox(), link.write_timeout_ms); !w) {
+          last_problem = w.error().text();
+          break;
+        }
+        if (session.finished()) {
+          SendReport report;
+          report.done = session.phase() == Phase::Done;
+          report.message = session.message();
+          report.progress = session.progress();
+          report.reconnects = connections - 1;
+          report.seconds = seconds_now() - start;
+          return report;
+        }
+        const double wait = session.next_timer_s(seconds_now());
+        const int timeout_ms = std::clamp(static_cast<int>(wait * 1000) + 1, 1, 50);
+        auto n = transport.read_some(buffer, timeout_ms);
+        if (!n) {
+          last_problem = n.error().text();
+          break;
+        }
+        decoder.feed(std::span(buffer.data(), n.value()), [&](std::span<const std::uint8_t> raw) {
+          Frame frame;
+          if (!decode_frame(raw, frame)) {
+            debug_line("host: dropped a frame that failed its check");
+            return;
+          }
+          if (debug_enabled()) debug_line("host <- " + describe(frame));
+          session.on_frame(frame, seconds_now());
+        });
+        session.poll(seconds_now());
+        const Progress now = session.progress();
+        if (now.rows_received > before.rows_received || now.rows_knitted > before.rows_knitted ||
+            now.phase != before.phase) {
+          failed_attempts = 0;
+        }
+        if (on_progress) on_progress(now, "");
+        before = now;
+        if (session.wants_reconnect()) {
+          last_problem = "no answer from the device for " +
+                         std::to_string(static_cast<int>(options.silence_s)) + " s";
+          break;
+        }
+      }
+    }
+    if (++failed_attempts > link.max_attempts) {
+      const Progress p = session.progress();
+      return make_error(ErrorClass::Disconnected,
+                        "gave up on " + uri.text + " after " + std::to_string(link.max_attempts) +
+                            " attempts in a row (" + last_problem + "); " +
+                            std::to_string(p.rows_received) + " of " +
+                            std::to_string(p.rows_total) + " rows were acknowledged and " +
+                            std::to_string(p.rows_knitted) +
+                            " knitted. The device keeps its counters: run `wearknit send " +
+                            job.name + " --to " + uri.text + " --resume` to finish the job");
+    }
+    const double backoff = std::min(link.first_backoff_s * (1 << std::min(failed_attempts - 1, 10)),
+                                    link.max_backoff_s);
+    note("connection lost (" + last_problem + "); retrying in " +
+         std::to_string(static_cast<int>(backoff * 1000)) + " ms (attempt " +
+         std::to_string(failed_attempts) + " of " + std::to_string(link.max_attempts) + ")");
+    sleep_s(backoff);
+  }
+}
+
+Result<DeviceStatus> query_status(const DeviceUri& uri, const LinkOptions& link) {
+  return exchange(
+      uri, link,
+      [](std::uint32_t, const DeviceStatus*) {
+        return Frame{FrameType::Hello, 0, 0, 0, encode(HelloMessage{})};
+      },
+      [](const DeviceStatus&) { return true; });
+}
+
+Result<DeviceStatus> send_command(const DeviceUri& uri, Command command, const LinkOptions& link) {
+  auto first = query_status(uri, link);
+  if (!first) return first.error();
+  const DeviceStatus& current = first.value();
+  if (!job_unfinished(current.status.state)) {
+    return make_error(ErrorClass::Protocol,
+                      uri.text + ": no unfinished job to " + std::string(to_string(command)) +
+                          " (the device is " + std::string(to_string(current.status.state)) + ")");
+  }
+  const std::uint32_t job_id = current.job_id;
+  return exchange(
+      uri, link,
+      [&](std::uint32_t, const DeviceStatus*) {
+        return Frame{FrameType::Command, 0, job_id, 0, encode(CommandMessage{command})};
+      },
+      [&](const DeviceStatus& s) {
+        if (s.job_id != job_id) return true;  // someone else's job now: report it
+        switch (command) {
+          case Command::Pause:
+            return s.status.state == JobState::Paused || (s.status.state == JobState::Receiving) ||
+                   !job_unfinished(s.status.state);
+          case Command::Resume:
+            return s.status.state != JobState::Paused && s.status.state != JobState::Alarm;
+          case Command::Cancel:
+            return s.status.state == JobState::Cancelled || !job_unfinished(s.status.state);
+        }
+        return true;
+      });
+}
+
+}  // namespace devices
