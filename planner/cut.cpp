@@ -12,7 +12,9 @@ namespace planner {
 
 namespace {
 
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
+std::size_t at(int i) {
+  return static_cast<std::size_t>(i);
+}
 
 // Crossing a side of direction d leaves a counter-clockwise unit square
 // through that side: the +u side is the bottom one, so the neighbour lies at
@@ -393,9 +395,11 @@ CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params) {
     }
     // §4.1 expansion over h: g's frame makes t opposite to h.
     const int f = q.face(h);
-    const int frame = ((cut.direction[at(h)] + 2 - halfedge_direction(q, labels, 0, t)) % 4 + 4) % 4;
+    const int frame =
+        ((cut.direction[at(h)] + 2 - halfedge_direction(q, labels, 0, t)) % 4 + 4) % 4;
     const auto& step = kStep[at(cut.direction[at(h)])];
-    const std::array<int, 2> uv = {cut.face_uv[at(f)][0] + step[0], cut.face_uv[at(f)][1] + step[1]};
+    const std::array<int, 2> uv = {cut.face_uv[at(f)][0] + step[0],
+                                   cut.face_uv[at(f)][1] + step[1]};
     const auto cell = grid.find(cell_key(uv));
     const int count = cell == grid.end() ? 0 : cell->second;
     place(g, frame, uv, overlap_score[at(f)] + count);
@@ -450,8 +454,8 @@ std::vector<std::string> verify_cut(const CutMesh& cut) {
     const int t = q.twin(h);
     if (t < 0 || cut.cut_edge[at(q.edge(h))]) continue;
     if ((cut.direction[at(h)] + 2) % 4 != cut.direction[at(t)]) {
-      problems.push_back("uncut edge " + std::to_string(q.from(h)) + "-" +
-                         std::to_string(q.to(h)) + " has inconsistent labels");
+      problems.push_back("uncut edge " + std::to_string(q.from(h)) + "-" + std::to_string(q.to(h)) +
+                         " has inconsistent labels");
     }
   }
   try {

@@ -62,12 +62,12 @@ struct CutArc {
 struct CutMesh {
   HalfedgeMesh proxy;  // Q: quads and triangles
   FieldLabels labels;
-  std::vector<int> face_frame;          // per face: direction of its first half-edge
-  std::vector<int> direction;           // per half-edge of Q (see top of file)
+  std::vector<int> face_frame;              // per face: direction of its first half-edge
+  std::vector<int> direction;               // per half-edge of Q (see top of file)
   std::vector<std::array<int, 2>> face_uv;  // §4.2 integer parametric position
-  std::vector<int> overlap_count;       // per face: faces of the patch in its (u, v) cell
-  std::vector<bool> cut_edge;           // per edge of Q: both sides are on the disc boundary
-  std::vector<int> motorcycle_edges;    // per edge of Q: how many motorcycles crossed it
+  std::vector<int> overlap_count;           // per face: faces of the patch in its (u, v) cell
+  std::vector<bool> cut_edge;               // per edge of Q: both sides are on the disc boundary
+  std::vector<int> motorcycle_edges;        // per edge of Q: how many motorcycles crossed it
   // The disc: the faces of Q in the same order and corner order, with the
   // vertices along cuts duplicated. disc_source[i] is Q's vertex of disc vertex i.
   PolygonMesh disc;
@@ -102,6 +102,8 @@ struct CutSummary {
 CutSummary summarize(const CutMesh& cut);
 
 // Course (u) or wale (v) of an edge of Q, from the direction of its first half-edge.
-inline bool is_course(int direction) { return direction % 2 == 0; }
+inline bool is_course(int direction) {
+  return direction % 2 == 0;
+}
 
 }  // namespace planner

@@ -16,8 +16,9 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
-
+std::size_t at(int i) {
+  return static_cast<std::size_t>(i);
+}
 
 json cuts_json(const CutMesh& cut, const CutSummary& summary) {
   json arcs = json::array();
@@ -65,8 +66,9 @@ json labels_json(const CutMesh& cut) {
     }
   }
   return {{"format", "wearknit-labels 1"},
-          {"directions", "per face side i (corner i to corner i+1 of proxy.obj's face): "
-                         "0 +u course, 1 +v wale, 2 -u course, 3 -v wale"},
+          {"directions",
+           "per face side i (corner i to corner i+1 of proxy.obj's face): "
+           "0 +u course, 1 +v wale, 2 -u course, 3 -v wale"},
           {"seed_face", cut.seed_face},
           {"frame", cut.face_frame},
           {"vanishing_corner", cut.labels.vanishing_corner},
@@ -80,37 +82,37 @@ json labels_json(const CutMesh& cut) {
 }
 
 json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
-  return {
-      {"format", "wearknit-cut-report 1"},
-      {"input",
-       {{"file", r.input},
-        {"units", r.units},
-        {"scale", r.scale},
-        {"size_mm", {r.input_size_mm.x(), r.input_size_mm.y(), r.input_size_mm.z()}},
-        {"vertices", r.input_vertices},
-        {"faces", r.input_faces}}},
-      {"proxy",
-       {{"remeshed", r.remeshed},
-        {"edge_mm", r.proxy_edge_mm},
-        {"vertices", cut.proxy.num_vertices()},
-        {"faces", cut.proxy.num_faces()},
-        {"polygons_split", r.polygons_split},
-        {"triangles_paired", r.triangles_paired}}},
-      {"params", {{"seed", r.params.seed}, {"cs", r.params.cs}, {"co", r.params.co}}},
-      {"irregular_vertices", cut.labels.irregular_vertices},
-      {"irregular_vertex_count", s.irregular_vertices},
-      {"cut_edges", s.cut_edges},
-      {"arcs", s.arcs},
-      {"cut_length_mm", s.cut_length_mm},
-      {"overlapping_faces", s.overlapping_faces},
-      {"disc", {{"vertices", s.disc_vertices},
-                {"euler_characteristic", s.euler_characteristic},
-                {"boundary_loops", s.boundary_loops}}},
-      {"time_s",
-       {{"load", r.load_seconds},
-        {"proxy", r.proxy_seconds},
-        {"cut", r.cut_seconds},
-        {"total", r.load_seconds + r.proxy_seconds + r.cut_seconds}}}};
+  return {{"format", "wearknit-cut-report 1"},
+          {"input",
+           {{"file", r.input},
+            {"units", r.units},
+            {"scale", r.scale},
+            {"size_mm", {r.input_size_mm.x(), r.input_size_mm.y(), r.input_size_mm.z()}},
+            {"vertices", r.input_vertices},
+            {"faces", r.input_faces}}},
+          {"proxy",
+           {{"remeshed", r.remeshed},
+            {"edge_mm", r.proxy_edge_mm},
+            {"vertices", cut.proxy.num_vertices()},
+            {"faces", cut.proxy.num_faces()},
+            {"polygons_split", r.polygons_split},
+            {"triangles_paired", r.triangles_paired}}},
+          {"params", {{"seed", r.params.seed}, {"cs", r.params.cs}, {"co", r.params.co}}},
+          {"irregular_vertices", cut.labels.irregular_vertices},
+          {"irregular_vertex_count", s.irregular_vertices},
+          {"cut_edges", s.cut_edges},
+          {"arcs", s.arcs},
+          {"cut_length_mm", s.cut_length_mm},
+          {"overlapping_faces", s.overlapping_faces},
+          {"disc",
+           {{"vertices", s.disc_vertices},
+            {"euler_characteristic", s.euler_characteristic},
+            {"boundary_loops", s.boundary_loops}}},
+          {"time_s",
+           {{"load", r.load_seconds},
+            {"proxy", r.proxy_seconds},
+            {"cut", r.cut_seconds},
+            {"total", r.load_seconds + r.proxy_seconds + r.cut_seconds}}}};
 }
 
 std::optional<json> read_json(const fs::path& path, knitout::DiagnosticSink& sink) {
@@ -135,21 +137,24 @@ std::string write_cut_result(const std::string& dir, const CutMesh& cut, const C
   if (ec) return dir + ": cannot create folder: " + ec.message();
   const CutSummary summary = summarize(cut);
   const fs::path base(dir);
-  std::string failure = knitout::write_file_atomically((base / "proxy.obj").string(), [&](std::ostream& out) {
-    write_obj(out, cut.proxy.polygons(), "wearknit proxy Q (quads and triangles), mm");
-  });
+  std::string failure =
+      knitout::write_file_atomically((base / "proxy.obj").string(), [&](std::ostream& out) {
+        write_obj(out, cut.proxy.polygons(), "wearknit proxy Q (quads and triangles), mm");
+      });
   if (!failure.empty()) return failure;
-  failure = knitout::write_file_atomically((base / "cut-mesh.obj").string(), [&](std::ostream& out) {
-    write_obj(out, cut.disc,
-              "wearknit cut-mesh: one disc; faces as in proxy.obj, vertices duplicated along cuts");
-  });
+  failure =
+      knitout::write_file_atomically((base / "cut-mesh.obj").string(), [&](std::ostream& out) {
+        write_obj(
+            out, cut.disc,
+            "wearknit cut-mesh: one disc; faces as in proxy.obj, vertices duplicated along cuts");
+      });
   if (!failure.empty()) return failure;
   const std::pair<const char*, json> files[] = {{"cuts.json", cuts_json(cut, summary)},
                                                 {"labels.json", labels_json(cut)},
                                                 {"report.json", report_json(cut, summary, report)}};
   for (const auto& [name, content] : files) {
-    failure = knitout::write_file_atomically((base / name).string(),
-                                             [&](std::ostream& out) { out << content.dump(1) << '\n'; });
+    failure = knitout::write_file_atomically(
+        (base / name).string(), [&](std::ostream& out) { out << content.dump(1) << '\n'; });
     if (!failure.empty()) return failure;
   }
   return {};
@@ -160,7 +165,8 @@ std::optional<CutMesh> read_cut_result(const std::string& dir, knitout::Diagnost
   const std::size_t errors_before = sink.error_count();
   for (const char* name : {"proxy.obj", "cut-mesh.obj", "cuts.json", "labels.json"}) {
     if (!fs::is_regular_file(base / name)) {
-      sink.error((base / name).string(), 0, 0, "P020", "missing: not a cut folder (run wearknit cut)");
+      sink.error((base / name).string(), 0, 0, "P020",
+                 "missing: not a cut folder (run wearknit cut)");
     }
   }
   if (sink.error_count() != errors_before) return std::nullopt;

@@ -2,8 +2,9 @@
 //   proxy.obj      Q, the quad-dominant proxy (quads and triangles), in mm
 //   cut-mesh.obj   the disc: Q's faces in the same order, vertices duplicated along cuts
 //   cuts.json      the cut-arcs: edges as 0-based vertex index pairs of proxy.obj, length in mm
-//   labels.json    per face: frame, vanishing corner, side directions, (u, v); per edge: course|wale
-//   report.json    input size, proxy, irregular vertices, cut edges, arcs, cut length, overlaps, time
+//   labels.json    per face: frame, vanishing corner, side directions, (u, v); per edge:
+//   course|wale report.json    input size, proxy, irregular vertices, cut edges, arcs, cut length,
+//   overlaps, time
 // Later stages (wearability, stitch mesh) read it with read_cut_result.
 #pragma once
 

@@ -167,8 +167,12 @@ class KindReporter {
   int count_ = 0;
 };
 
-std::string vname(int v) { return "vertex " + std::to_string(v + 1); }
-std::string fname(int f) { return "face " + std::to_string(f + 1); }
+std::string vname(int v) {
+  return "vertex " + std::to_string(v + 1);
+}
+std::string fname(int f) {
+  return "face " + std::to_string(f + 1);
+}
 
 }  // namespace
 
@@ -232,8 +236,7 @@ std::optional<PolygonMesh> read_polygon_soup(std::istream& in, std::string_view 
   return mesh;
 }
 
-bool check_mesh(const PolygonMesh& mesh, const std::string& source,
-                knitout::DiagnosticSink& sink) {
+bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::DiagnosticSink& sink) {
   const std::size_t errors_before = sink.error_count();
   const int nv = static_cast<int>(mesh.positions.size());
   const int nf = static_cast<int>(mesh.faces.size());
@@ -310,16 +313,15 @@ bool check_mesh(const PolygonMesh& mesh, const std::string& source,
     KindReporter nonmanifold(sink, source, "P011", "non-manifold edges");
     KindReporter orientation(sink, source, "P012", "inconsistently oriented edges");
     for (const auto& [edge, faces] : undirected) {
-      const std::string ename =
-          "edge between " + vname(edge.first) + " and " + vname(edge.second);
+      const std::string ename = "edge between " + vname(edge.first) + " and " + vname(edge.second);
       if (faces.size() > 2) {
         std::string list;
         for (std::size_t i = 0; i < faces.size() && i < 6; ++i) {
           list += (i == 0 ? "" : ", ") + std::to_string(faces[i] + 1);
         }
         if (faces.size() > 6) list += ", ...";
-        nonmanifold.report(ename + " is shared by " + std::to_string(faces.size()) +
-                           " faces (" + list + "); an edge may border at most 2 faces");
+        nonmanifold.report(ename + " is shared by " + std::to_string(faces.size()) + " faces (" +
+                           list + "); an edge may border at most 2 faces");
         continue;
       }
       for (const int dir : {0, 1}) {
@@ -421,9 +423,8 @@ bool check_mesh(const PolygonMesh& mesh, const std::string& source,
       }
       if (list.size() > 5) text += "; ...";
       sink.error(source, 0, 0, "P014",
-                 "the mesh has " + std::to_string(components.size()) +
-                     " separate components: " + text +
-                     "; cut one garment piece at a time (keep a single component)");
+                 "the mesh has " + std::to_string(components.size()) + " separate components: " +
+                     text + "; cut one garment piece at a time (keep a single component)");
     }
   }
   return sink.error_count() == errors_before;

@@ -30,7 +30,8 @@ std::optional<double> mm_per_unit(std::string_view units);
 
 // Reads the polygon soup of `path` (format from the extension) with no
 // checks. Reports P001 and returns nullopt when the file cannot be read.
-std::optional<PolygonMesh> read_polygon_soup(const std::string& path, knitout::DiagnosticSink& sink);
+std::optional<PolygonMesh> read_polygon_soup(const std::string& path,
+                                             knitout::DiagnosticSink& sink);
 // Same from a stream; `extension` is "obj", "off", "ply" or "stl".
 std::optional<PolygonMesh> read_polygon_soup(std::istream& in, std::string_view extension,
                                              const std::string& source,

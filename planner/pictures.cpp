@@ -13,7 +13,9 @@ namespace planner {
 
 namespace {
 
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
+std::size_t at(int i) {
+  return static_cast<std::size_t>(i);
+}
 
 cairo_status_t write_to_stream(void* closure, const unsigned char* data, unsigned int length) {
   auto* out = static_cast<std::ostream*>(closure);
@@ -47,7 +49,8 @@ std::string draw_cuts_3d(const CutMesh& cut, const std::string& png_path, int pa
   for (int v = 0; v < q.num_vertices(); ++v) center += q.position(v);
   center /= std::max(1, q.num_vertices());
   double radius = 1e-9;
-  for (int v = 0; v < q.num_vertices(); ++v) radius = std::max(radius, (q.position(v) - center).norm());
+  for (int v = 0; v < q.num_vertices(); ++v)
+    radius = std::max(radius, (q.position(v) - center).norm());
   const View views[4] = {{0, 20}, {90, 20}, {180, 20}, {270, 20}};
   const Vec3 light = Vec3(0.3, 0.5, 1.0).normalized();
   for (int panel = 0; panel < 4; ++panel) {
@@ -67,7 +70,9 @@ std::string draw_cuts_3d(const CutMesh& cut, const std::string& png_path, int pa
     const double ox = (panel % 2) * panel_px + panel_px / 2.0;
     const double oy = (panel / 2) * panel_px + panel_px / 2.0;
     const double scale = 0.46 * panel_px / radius;
-    auto to_px = [&](const Vec3& p) { return std::pair<double, double>{ox + scale * p.x(), oy - scale * p.y()}; };
+    auto to_px = [&](const Vec3& p) {
+      return std::pair<double, double>{ox + scale * p.x(), oy - scale * p.y()};
+    };
     std::vector<std::pair<double, int>> order;
     order.reserve(at(q.num_faces()));
     for (int f = 0; f < q.num_faces(); ++f) {
@@ -93,12 +98,16 @@ std::string draw_cuts_3d(const CutMesh& cut, const std::string& png_path, int pa
       const double shade = 0.35 + 0.6 * std::abs(n.dot(light));
       for (int i = 0; i < degree; ++i) {
         const auto [x, y] = to_px(projected[at(q.from(start + i))]);
-        if (i == 0) cairo_move_to(cr, x, y);
-        else cairo_line_to(cr, x, y);
+        if (i == 0)
+          cairo_move_to(cr, x, y);
+        else
+          cairo_line_to(cr, x, y);
       }
       cairo_close_path(cr);
-      if (front) cairo_set_source_rgb(cr, 0.80 * shade, 0.84 * shade, 0.90 * shade);
-      else cairo_set_source_rgb(cr, 0.45 * shade, 0.40 * shade, 0.40 * shade);
+      if (front)
+        cairo_set_source_rgb(cr, 0.80 * shade, 0.84 * shade, 0.90 * shade);
+      else
+        cairo_set_source_rgb(cr, 0.45 * shade, 0.40 * shade, 0.40 * shade);
       cairo_fill_preserve(cr);
       cairo_set_source_rgba(cr, 0.1, 0.1, 0.1, 0.25);
       cairo_set_line_width(cr, 0.5);
@@ -112,8 +121,10 @@ std::string draw_cuts_3d(const CutMesh& cut, const std::string& png_path, int pa
         const auto [x1, y1] = to_px(projected[at(q.to(h))]);
         cairo_move_to(cr, x0, y0);
         cairo_line_to(cr, x1, y1);
-        if (boundary) cairo_set_source_rgb(cr, 0.1, 0.3, 0.9);
-        else cairo_set_source_rgb(cr, 0.85, 0.05, 0.05);
+        if (boundary)
+          cairo_set_source_rgb(cr, 0.1, 0.3, 0.9);
+        else
+          cairo_set_source_rgb(cr, 0.85, 0.05, 0.05);
         cairo_set_line_width(cr, front ? 2.5 : 1.2);
         cairo_stroke(cr);
       }
@@ -179,15 +190,25 @@ std::string draw_layout_2d(const CutMesh& cut, const std::string& png_path, int 
     // The side of the unit square a direction is traversed along, counter-clockwise.
     double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
     switch (cut.direction[at(h)]) {
-      case 0: x0 = u, y0 = v, x1 = u + 1, y1 = v; break;
-      case 1: x0 = u + 1, y0 = v, x1 = u + 1, y1 = v + 1; break;
-      case 2: x0 = u + 1, y0 = v + 1, x1 = u, y1 = v + 1; break;
-      default: x0 = u, y0 = v + 1, x1 = u, y1 = v; break;
+      case 0:
+        x0 = u, y0 = v, x1 = u + 1, y1 = v;
+        break;
+      case 1:
+        x0 = u + 1, y0 = v, x1 = u + 1, y1 = v + 1;
+        break;
+      case 2:
+        x0 = u + 1, y0 = v + 1, x1 = u, y1 = v + 1;
+        break;
+      default:
+        x0 = u, y0 = v + 1, x1 = u, y1 = v;
+        break;
     }
     cairo_move_to(cr, x_of(x0), y_of(y0));
     cairo_line_to(cr, x_of(x1), y_of(y1));
-    if (boundary) cairo_set_source_rgb(cr, 0.1, 0.3, 0.9);
-    else cairo_set_source_rgb(cr, 0.85, 0.05, 0.05);
+    if (boundary)
+      cairo_set_source_rgb(cr, 0.1, 0.3, 0.9);
+    else
+      cairo_set_source_rgb(cr, 0.85, 0.05, 0.05);
     cairo_stroke(cr);
   }
   cairo_destroy(cr);

@@ -131,13 +131,16 @@ std::vector<Vec3> orientation_field(const HalfedgeMesh& mesh, std::vector<Vec3>&
   for (int f = 0; f < mesh.num_faces(); ++f) {
     const Vec3 n = mesh.face_normal(f);
     const int start = mesh.face_start(f);
-    for (int i = 0; i < mesh.degree(f); ++i) normals[static_cast<std::size_t>(mesh.from(start + i))] += n;
+    for (int i = 0; i < mesh.degree(f); ++i)
+      normals[static_cast<std::size_t>(mesh.from(start + i))] += n;
   }
   std::vector<Vec3> field(static_cast<std::size_t>(nv));
   for (int v = 0; v < nv; ++v) {
     Vec3& n = normals[static_cast<std::size_t>(v)];
-    if (n.norm() > 0) n.normalize();
-    else n = Vec3::UnitZ();
+    if (n.norm() > 0)
+      n.normalize();
+    else
+      n = Vec3::UnitZ();
     // A fixed start (no randomness): the axis least aligned with the normal.
     Vec3 axis = Vec3::UnitX();
     if (std::abs(n.x()) > 0.8) axis = Vec3::UnitY();
@@ -317,9 +320,8 @@ ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params) {
   } else {
     result.remeshed = true;
     const double area = total_area(input);
-    result.edge_mm = params.proxy_edge_mm > 0.0
-                         ? params.proxy_edge_mm
-                         : std::sqrt(area / std::max(1, params.auto_faces));
+    result.edge_mm = params.proxy_edge_mm > 0.0 ? params.proxy_edge_mm
+                                                : std::sqrt(area / std::max(1, params.auto_faces));
     result.mesh = decimate(input, result.edge_mm);
     result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
   }

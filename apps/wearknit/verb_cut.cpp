@@ -118,7 +118,8 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
   if (failure.empty() && values.count("no-pictures") == 0) {
     failure = planner::draw_cuts_3d(cut, (std::filesystem::path(output) / "cuts-3d.png").string());
     if (failure.empty()) {
-      failure = planner::draw_layout_2d(cut, (std::filesystem::path(output) / "layout-2d.png").string());
+      failure =
+          planner::draw_layout_2d(cut, (std::filesystem::path(output) / "layout-2d.png").string());
     }
   }
   if (!failure.empty()) {
@@ -133,9 +134,10 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
                 << (proxy.remeshed ? " (remeshed)" : " (input as is)") << "\n"
                 << "cut: " << s.irregular_vertices << " irregular vertices, " << s.cut_edges
                 << " cut edges in " << s.arcs << " arcs, " << s.cut_length_mm << " mm, "
-                << s.overlapping_faces << " overlapping faces, "
-                << std::setprecision(3) << report.proxy_seconds + report.cut_seconds << " s\n"
-                << "wrote " << output << "/{proxy.obj,cut-mesh.obj,cuts.json,labels.json,report.json"
+                << s.overlapping_faces << " overlapping faces, " << std::setprecision(3)
+                << report.proxy_seconds + report.cut_seconds << " s\n"
+                << "wrote " << output
+                << "/{proxy.obj,cut-mesh.obj,cuts.json,labels.json,report.json"
                 << (values.count("no-pictures") ? "" : ",cuts-3d.png,layout-2d.png") << "}\n";
   }
   return kExitOk;
