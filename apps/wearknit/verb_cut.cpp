@@ -101,6 +101,8 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
   report.proxy_edge_mm = proxy.edge_mm;
   report.polygons_split = proxy.polygons_split;
   report.triangles_paired = proxy.triangles_paired;
+  report.proxy_method = proxy.method;
+  report.remesh_failure = proxy.remesh_failure;
   report.proxy_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
@@ -131,7 +133,9 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
     context.out << std::fixed << std::setprecision(1) << input << ": " << report.input_size_mm.x()
                 << " x " << report.input_size_mm.y() << " x " << report.input_size_mm.z()
                 << " mm; proxy " << cut.proxy.num_faces() << " faces"
-                << (proxy.remeshed ? " (remeshed)" : " (input as is)") << "\n"
+                << (proxy.remeshed ? " (remeshed: " + proxy.method + ")"
+                                   : std::string(" (input as is)"))
+                << "\n"
                 << "cut: " << s.irregular_vertices << " irregular vertices, " << s.cut_edges
                 << " cut edges in " << s.arcs << " arcs, " << s.cut_length_mm << " mm, "
                 << s.overlapping_faces << " overlapping faces, " << std::setprecision(3)

@@ -41,7 +41,8 @@ TEST(CutCliTest, WritesTheCutFolder) {
 
 TEST(CutCliTest, BadMeshExitsOneNamingTheElementAndWritesNothing) {
   const auto dir = make_temp_dir("cut_cli_bad");
-  write_file(dir / "bowtie.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n");
+  write_file(dir / "bowtie.obj",
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n");
   const auto result =
       run_wearknit("cut " + (dir / "bowtie.obj").string() + " -o " + (dir / "out").string());
   EXPECT_EQ(result.exit_code, 1);

@@ -50,7 +50,8 @@ TEST(LabelsTest, CubeCornersAreTheIrregularVertices) {
   const FieldLabels labels = label_field(q);
   EXPECT_EQ(labels.irregular_vertices.size(), 8u);
   EXPECT_EQ(labels.singular_vertices.size(), 8u);
-  for (int v : labels.irregular_vertices) EXPECT_EQ(labels.corner_count[static_cast<std::size_t>(v)], 3);
+  for (int v : labels.irregular_vertices)
+    EXPECT_EQ(labels.corner_count[static_cast<std::size_t>(v)], 3);
 }
 
 TEST(LabelsTest, GridHasNoIrregularVertexBoundaryIgnored) {
@@ -184,8 +185,9 @@ TEST(CutIoTest, MissingFolderIsADiagnostic) {
   knitout::DiagnosticSink sink;
   EXPECT_FALSE(read_cut_result("/nonexistent/cut", sink).has_value());
   ASSERT_EQ(sink.diagnostics().size(), 4u);
-  EXPECT_EQ(knitout::format(sink.diagnostics()[0]),
-            "/nonexistent/cut/proxy.obj: error: [P020] missing: not a cut folder (run wearknit cut)");
+  EXPECT_EQ(
+      knitout::format(sink.diagnostics()[0]),
+      "/nonexistent/cut/proxy.obj: error: [P020] missing: not a cut folder (run wearknit cut)");
 }
 
 TEST(CutIoTest, ArcOverANonEdgeIsADiagnostic) {
@@ -221,8 +223,9 @@ TEST(CutTest, EverySharedMeshBecomesOneDisc) {
     knitout::DiagnosticSink sink;
     const auto mesh = load_mesh(file.string(), {}, sink);
     ASSERT_TRUE(mesh.has_value()) << file << ": "
-                                  << (sink.diagnostics().empty() ? ""
-                                                                 : knitout::format(sink.diagnostics()[0]));
+                                  << (sink.diagnostics().empty()
+                                          ? ""
+                                          : knitout::format(sink.diagnostics()[0]));
     ProxyParams proxy_params;
     proxy_params.auto_faces = 800;
     const ProxyResult proxy = make_proxy(*mesh, proxy_params);
