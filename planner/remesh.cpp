@@ -20,7 +20,9 @@ namespace planner {
 
 namespace {
 
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
+std::size_t at(int i) {
+  return static_cast<std::size_t>(i);
+}
 
 struct TriTraits : public OpenMesh::DefaultTraits {
   using Point = OpenMesh::Vec3d;
@@ -81,13 +83,13 @@ PolygonMesh decimate(const PolygonMesh& input, double target) {
   return out;
 }
 
-
 double mean_edge_length(const PolygonMesh& mesh) {
   double total = 0.0;
   std::size_t count = 0;
   for (const auto& face : mesh.faces) {
     for (std::size_t i = 0; i < face.size(); ++i) {
-      total += (mesh.positions[at(face[(i + 1) % face.size()])] - mesh.positions[at(face[i])]).norm();
+      total +=
+          (mesh.positions[at(face[(i + 1) % face.size()])] - mesh.positions[at(face[i])]).norm();
       ++count;
     }
   }
@@ -126,12 +128,14 @@ PolygonMesh resample(const PolygonMesh& input, double target_mm) {
   PolygonMesh tri;
   tri.positions = input.positions;
   for (const auto& face : input.faces) {
-    for (std::size_t i = 1; i + 1 < face.size(); ++i) tri.faces.push_back({face[0], face[i], face[i + 1]});
+    for (std::size_t i = 1; i + 1 < face.size(); ++i)
+      tri.faces.push_back({face[0], face[i], face[i + 1]});
   }
   // Coarse input is refined; input within a factor 2 of the target is used
   // as it is; only a much finer one is decimated (the decimater is the
   // slowest step, so it is kept for the meshes that need it).
-  while (mean_edge_length(tri) > 2.0 * target_mm && tri.faces.size() < 4000000) tri = subdivide(tri);
+  while (mean_edge_length(tri) > 2.0 * target_mm && tri.faces.size() < 4000000)
+    tri = subdivide(tri);
   if (mean_edge_length(tri) >= 0.5 * target_mm) return tri;
   PolygonMesh decimated = decimate(tri, target_mm);
   knitout::DiagnosticSink sink;
@@ -197,7 +201,6 @@ std::vector<Vec3> orientation_field(const HalfedgeMesh& mesh, std::vector<Vec3>&
   }
   return field;
 }
-
 
 namespace {
 
@@ -337,8 +340,8 @@ void keep_largest_component(PolygonMesh& mesh) {
 
 }  // namespace
 
-std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input, const RemeshParams& params,
-                                                RemeshStats& stats) {
+std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input,
+                                                const RemeshParams& params, RemeshStats& stats) {
   const double s = params.edge_mm;
   // Samples about half a lattice step apart, so every lattice cell holds some.
   const HalfedgeMesh mesh(resample(input, params.sample_ratio * s));
@@ -384,8 +387,9 @@ std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input, const 
     const Vec3& ni = normals[at(i)];
     const Vec3& qi = q[at(i)];
     const Vec3 qj = closest_representative(q[at(j)], normals[at(j)], qi);
-    const auto [a, b] = compatible_positions(mesh.position(i), ni, qi, origin[at(i)], mesh.position(j),
-                                             normals[at(j)], qj, origin[at(j)], s);
+    const auto [a, b] =
+        compatible_positions(mesh.position(i), ni, qi, origin[at(i)], mesh.position(j),
+                             normals[at(j)], qj, origin[at(j)], s);
     const Vec3 ti = ni.cross(qi);
     const Vec3 tj = normals[at(j)].cross(qj);
     const long di0 = std::lround(qi.dot(a - origin[at(i)]) / s);
@@ -395,8 +399,10 @@ std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input, const 
     const long du = di0 - dj0;
     const long dv = di1 - dj1;
     const long manhattan = std::labs(du) + std::labs(dv);
-    if (manhattan == 0) collapse.unite(i, j);
-    else if (manhattan == 1) unit_edges.emplace_back(i, j);
+    if (manhattan == 0)
+      collapse.unite(i, j);
+    else if (manhattan == 1)
+      unit_edges.emplace_back(i, j);
   }
   std::vector<int> cls(at(nv), -1);
   std::vector<Vec3> position;
@@ -474,7 +480,8 @@ std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input, const 
     if (!touches_boundary) return false;
     centre /= static_cast<double>(loop.size());
     double nearest = std::numeric_limits<double>::infinity();
-    for (int v = 0; v < nv; ++v) nearest = std::min(nearest, (mesh.position(v) - centre).squaredNorm());
+    for (int v = 0; v < nv; ++v)
+      nearest = std::min(nearest, (mesh.position(v) - centre).squaredNorm());
     return std::sqrt(nearest) > 0.6 * s;
   };
   // Faces: from a -> b, turn to the neighbour of b just clockwise of a.
@@ -512,7 +519,8 @@ std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input, const 
         for (int v : face) {
           auto found = where.find(v);
           if (found != where.end()) {
-            std::vector<int> loop(stack.begin() + static_cast<std::ptrdiff_t>(found->second), stack.end());
+            std::vector<int> loop(stack.begin() + static_cast<std::ptrdiff_t>(found->second),
+                                  stack.end());
             for (std::size_t k = found->second + 1; k < stack.size(); ++k) where.erase(stack[k]);
             stack.resize(found->second + 1);
             if (loop.size() >= 3) loops.push_back(std::move(loop));

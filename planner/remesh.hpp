@@ -30,14 +30,14 @@ std::vector<Vec3> orientation_field(const HalfedgeMesh& mesh, std::vector<Vec3>&
                                     int iterations);
 
 struct RemeshParams {
-  double edge_mm = 1.0;           // lattice spacing: the target edge length
+  double edge_mm = 1.0;  // lattice spacing: the target edge length
   int orientation_iterations = 150;
   int position_iterations = 150;
   double sample_ratio = 0.4;  // sample spacing as a fraction of edge_mm
 };
 
 struct RemeshStats {
-  int samples = 0;  // vertices of the sampled input the fields live on
+  int samples = 0;      // vertices of the sampled input the fields live on
   std::string failure;  // why extraction gave no usable mesh (empty on success)
 };
 
@@ -45,7 +45,7 @@ struct RemeshStats {
 // triangulated) with the same Euler characteristic and number of boundary
 // loops, or nullopt (with stats.failure saying why) when the extraction did
 // not give one connected, consistently oriented manifold of that topology.
-std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input, const RemeshParams& params,
-                                                RemeshStats& stats);
+std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input,
+                                                const RemeshParams& params, RemeshStats& stats);
 
 }  // namespace planner
