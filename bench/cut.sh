@@ -3,11 +3,11 @@
 #   cutting bunny-qd (load + cut) under 1 s; remeshing and cutting the
 #   52,000-face armadillo under 30 s. Prints the measured times and their
 #   ratio to the target.
-# usage: bench/cut.sh [BUILD_DIR]   (default: build; needs ../shared or WEARKNIT_SHARED)
-set -euo pipefail
-cd "$(dirname "$0")/.."
-build="${1:-build}"
-ninja -C "$build" cut_bench wearknit >/dev/null
+# usage: bench/cut.sh   (release build in $WEARKNIT_BENCH_BUILD, default build-bench; needs ../shared)
+source "$(dirname "$0")/common.sh"
+cd "$ROOT"
+build="$BUILD"
+bench_build cut_bench
 json="$(mktemp)"
 trap 'rm -f "$json"' EXIT
 "$build/bench/cut_bench" --benchmark_format=json --benchmark_out="$json" --benchmark_out_format=json >/dev/null

@@ -5,12 +5,12 @@
 # (c_s = 1000, c_o = 1) -- on bunny-qd and fertility-qd. Prints a Markdown
 # table (means over seeds 1..5, and seed 1 alone) and writes the seed-1
 # pictures to docs/figures/fig5/.
-# usage: bench/fig5.sh [BUILD_DIR]   (default: build; needs ../shared or WEARKNIT_SHARED)
-set -euo pipefail
-cd "$(dirname "$0")/.."
-build="${1:-build}"
-shared="${WEARKNIT_SHARED:-../shared}"
-ninja -C "$build" wearknit >/dev/null
+# usage: bench/fig5.sh   (release build in $WEARKNIT_BENCH_BUILD, default build-bench; needs ../shared)
+source "$(dirname "$0")/common.sh"
+cd "$ROOT"
+build="$BUILD"
+shared="$SHARED"
+bench_build wearknit
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 figures=docs/figures/fig5

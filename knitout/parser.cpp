@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <istream>
@@ -78,10 +79,22 @@ struct Tokens {
   std::array<Token, kMaxTokens> items;
   std::size_t count = 0;
   bool overflow = false;
+  std::uint32_t overflow_column = 0;  // the first token past the limit
 };
 
 bool is_blank(char c) {
   return c == ' ' || c == '\t';
+}
+
+// Position of the first control character other than tab, or npos. Knitout
+// is text; a stray carriage return or NUL inside a line could not survive a
+// round trip through the writer.
+std::size_t find_control(std::string_view line) {
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const auto c = static_cast<unsigned char>(line[i]);
+    if ((c < 0x20 && c != '\t') || c == 0x7f) return i;
+  }
+  return std::string_view::npos;
 }
 
 void tokenize(std::string_view code, Tokens& tokens) {
@@ -95,6 +108,7 @@ void tokenize(std::string_view code, Tokens& tokens) {
     while (i < code.size() && !is_blank(code[i])) ++i;
     if (tokens.count == kMaxTokens) {
       tokens.overflow = true;
+      tokens.overflow_column = static_cast<std::uint32_t>(start + 1);
       return;
     }
     tokens.items[tokens.count++] = {code.substr(start, i - start),
@@ -105,12 +119,18 @@ void tokenize(std::string_view code, Tokens& tokens) {
 // A token as it appears in a message: quoted, long ones shortened.
 std::string quote(std::string_view token) {
   std::string out = "'";
-  if (token.size() > kMaxQuoted) {
-    out.append(token.substr(0, kMaxQuoted));
-    out += "...";
-  } else {
-    out.append(token);
+  const std::string_view shown = token.substr(0, kMaxQuoted);
+  for (char c : shown) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02X", static_cast<unsigned>(u));
+      out += escaped;
+    } else {
+      out += c;
+    }
   }
+  if (token.size() > kMaxQuoted) out += "...";
   out += '\'';
   return out;
 }
@@ -263,7 +283,7 @@ void Reader::read_header_block() {
   // Header lines: `;;Key: value` until the first line that is not `;;...`.
   for (;;) {
     if (line_.substr(0, 2) != ";;") break;
-    if (line_.find('\0') != std::string_view::npos) break;  // reported as a line
+    if (find_control(line_) != std::string_view::npos) break;  // reported as a line
     const std::string_view body = line_.substr(2);
     const std::size_t colon = body.find(": ");
     if (colon == std::string_view::npos) {
@@ -315,9 +335,14 @@ bool Reader::next(Instruction& out) {
 // Parses line_ into `out`; false for blank lines and lines with errors.
 bool Reader::parse_line(Instruction& out) {
   const std::uint32_t ln = line_number_;
-  if (const std::size_t nul = line_.find('\0'); nul != std::string_view::npos) {
-    sink_.error(source_, ln, static_cast<std::uint32_t>(nul + 1), "K004",
-                "NUL byte in line; knitout is text");
+  if (const std::size_t at = find_control(line_); at != std::string_view::npos) {
+    char code_point[8];
+    std::snprintf(code_point, sizeof code_point, "0x%02X",
+                  static_cast<unsigned>(static_cast<unsigned char>(line_[at])));
+    sink_.error(source_, ln, static_cast<std::uint32_t>(at + 1), "K004",
+                line_[at] == '\0'
+                    ? std::string("NUL byte in line; knitout is text")
+                    : std::string("control character ") + code_point + " in line; knitout is text");
     return false;
   }
   std::string_view code = line_;
@@ -347,7 +372,7 @@ bool Reader::parse_line(Instruction& out) {
   const Token& opcode = tokens.items[0];
   const std::uint32_t end_column = static_cast<std::uint32_t>(code.size() + 1);
   if (tokens.overflow) {
-    return error(tokens.items[kMaxTokens - 1].column, "K014",
+    return error(tokens.overflow_column, "K014",
                  "too many arguments for " + quote(opcode.text) + " (more than " +
                      std::to_string(kMaxTokens - 1) + ")");
   }

@@ -1,0 +1,25 @@
+// Replays every input the parser fuzzer saved (tests/knitout/fuzz_inputs:
+// the crashes it found, each fixed since, and its seed inputs) through the
+// same checks the fuzz target makes, as ordinary tests.
+#include <gtest/gtest.h>
+
+#include "tests/knitout/parse_check.hpp"
+#include "tests/test_support.hpp"
+
+namespace knitout {
+namespace {
+
+TEST(FuzzReplayTest, EverySavedInputPassesTheFuzzChecks) {
+  std::size_t replayed = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(WEARKNIT_FUZZ_INPUTS)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string data = wearknit::test::read_file(entry.path());
+    SCOPED_TRACE(entry.path().filename().string());
+    EXPECT_EQ(check_parse_round_trip(data), "");
+    ++replayed;
+  }
+  EXPECT_GT(replayed, 0u) << "no saved fuzz inputs found in " << WEARKNIT_FUZZ_INPUTS;
+}
+
+}  // namespace
+}  // namespace knitout
