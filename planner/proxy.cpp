@@ -242,7 +242,7 @@ ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params) {
     } else {
       result.method = "paired";
       result.remesh_failure = extracted ? "extracted mesh is not quad-dominant" : stats.failure;
-      result.mesh = resample(input, result.edge_mm);
+      result.mesh = resample(input, 0.8 * result.edge_mm, 0.8);
       result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
     }
   }
@@ -252,7 +252,7 @@ ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params) {
     result.remesh_failure =
         "splitting the extracted polygons left a face of more than 4 corners "
         "or a non-manifold edge";
-    result.mesh = resample(input, result.edge_mm);
+    result.mesh = resample(input, 0.8 * result.edge_mm, 0.8);
     result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
     result.polygons_split = 0;
   }

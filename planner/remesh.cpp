@@ -124,7 +124,7 @@ PolygonMesh subdivide(const PolygonMesh& mesh) {
 
 }  // namespace
 
-PolygonMesh resample(const PolygonMesh& input, double target_mm) {
+PolygonMesh resample(const PolygonMesh& input, double target_mm, double keep_above) {
   PolygonMesh tri;
   tri.positions = input.positions;
   for (const auto& face : input.faces) {
@@ -136,7 +136,7 @@ PolygonMesh resample(const PolygonMesh& input, double target_mm) {
   // slowest step, so it is kept for the meshes that need it).
   while (mean_edge_length(tri) > 2.0 * target_mm && tri.faces.size() < 4000000)
     tri = subdivide(tri);
-  if (mean_edge_length(tri) >= 0.5 * target_mm) return tri;
+  if (mean_edge_length(tri) >= keep_above * target_mm) return tri;
   PolygonMesh decimated = decimate(tri, target_mm);
   knitout::DiagnosticSink sink;
   // OpenMesh keeps the topology; should a collapse still leave a fold, the

@@ -17,9 +17,11 @@ namespace planner {
 
 // A triangle mesh of the checked surface `input` with edges about
 // `target_mm` long: polygons are fan-triangulated, a coarse mesh is
-// subdivided 1-to-4 first, then the shortest edges are collapsed (OpenMesh's
-// decimater; its link condition keeps the topology, normal flips refused).
-PolygonMesh resample(const PolygonMesh& input, double target_mm);
+// subdivided 1-to-4 while its mean edge exceeds 2 * target_mm; a mesh whose
+// mean edge is still below keep_above * target_mm is decimated (OpenMesh's
+// decimater, shortest edges first; its link condition keeps the topology,
+// normal flips are refused). The result is checked like any input.
+PolygonMesh resample(const PolygonMesh& input, double target_mm, double keep_above = 0.5);
 
 // Of the four directions o, n x o, -o, -n x o: the one closest to `target`.
 Vec3 closest_representative(const Vec3& o, const Vec3& n, const Vec3& target);
