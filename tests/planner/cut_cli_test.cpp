@@ -18,7 +18,8 @@ TEST(CutCliTest, WritesTheCutFolder) {
   WEARKNIT_REQUIRE_SHARED(shared);
   const auto dir = make_temp_dir("cut_cli");
   const auto result = run_wearknit("cut " + (shared / "meshes" / "sphere-qd.obj").string() +
-                                   " --units cm -o " + (dir / "out").string() + " --seed 3");
+                                   " --units cm -o " + (dir / "out").string() +
+                                   " --seed 3 --picture-px 100");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   for (const char* name : {"proxy.obj", "cut-mesh.obj", "cuts.json", "labels.json", "report.json",
                            "cuts-3d.png", "layout-2d.png"}) {
@@ -59,14 +60,14 @@ TEST(CutCliTest, TriangleInputIsRemeshedAtTheTargetEdgeLength) {
   const auto dir = make_temp_dir("cut_cli_tri");
   const auto result =
       run_wearknit("cut " + (shared / "meshes" / "half-torus.obj").string() + " -o " +
-                   (dir / "out").string() + " --proxy-edge-mm 0.12 --no-pictures -q");
+                   (dir / "out").string() + " --proxy-edge-mm 0.2 --no-pictures -q");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(result.out, "");
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "cuts-3d.png"));
   const auto report = nlohmann::json::parse(read_file(dir / "out" / "report.json"));
   EXPECT_EQ(report["proxy"]["remeshed"], true);
   EXPECT_EQ(report["proxy"]["method"], "instant-meshes");
-  EXPECT_EQ(report["proxy"]["edge_mm"], 0.12);
+  EXPECT_EQ(report["proxy"]["edge_mm"], 0.2);
   EXPECT_EQ(report["disc"]["euler_characteristic"], 1);
   EXPECT_EQ(report["disc"]["boundary_loops"], 1);
   // Mean edge of the proxy near the target: within 40 %.
@@ -86,7 +87,7 @@ TEST(CutCliTest, TriangleInputIsRemeshedAtTheTargetEdgeLength) {
     }
   }
   ASSERT_GT(count, 0);
-  EXPECT_NEAR(total / count, 0.12, 0.12 * 0.4);
+  EXPECT_NEAR(total / count, 0.2, 0.2 * 0.4);
   std::filesystem::remove_all(dir);
 }
 

@@ -230,9 +230,9 @@ TEST(CutTest, EverySharedMeshBecomesOneDisc) {
                                           ? ""
                                           : knitout::format(sink.diagnostics()[0]));
     ProxyParams proxy_params;
-    proxy_params.auto_faces = 400;
-    proxy_params.field_iterations = 40;
-    proxy_params.position_iterations = 40;
+    proxy_params.auto_faces = 300;
+    proxy_params.field_iterations = 30;
+    proxy_params.position_iterations = 30;
     const ProxyResult proxy = make_proxy(*mesh, proxy_params);
     if (proxy.remeshed) {
       ++remeshed;

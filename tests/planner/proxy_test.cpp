@@ -71,7 +71,7 @@ TEST(ProxyTest, QuadDominantInputIsKept) {
 
 TEST(ProxyTest, TriangleInputIsRemeshedIntoQuadDominantSurfaceOfSameTopology) {
   // Triangulate a fine torus, then ask for a coarser proxy.
-  PolygonMesh tri = test_meshes::torus(40, 20);
+  PolygonMesh tri = test_meshes::torus(30, 12);
   std::vector<std::vector<int>> faces;
   for (const auto& f : tri.faces) {
     faces.push_back({f[0], f[1], f[2]});
@@ -79,7 +79,9 @@ TEST(ProxyTest, TriangleInputIsRemeshedIntoQuadDominantSurfaceOfSameTopology) {
   }
   tri.faces = faces;
   ProxyParams params;
-  params.proxy_edge_mm = 0.6;
+  params.proxy_edge_mm = 0.8;
+  params.field_iterations = 30;
+  params.position_iterations = 30;
   const ProxyResult proxy = make_proxy(tri, params);
   EXPECT_TRUE(proxy.remeshed);
   EXPECT_TRUE(is_quad_dominant(proxy.mesh));
