@@ -298,7 +298,7 @@ bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::Dia
 
   // Edge use: directed half-edges and undirected edges with the faces on them.
   std::unordered_map<std::uint64_t, std::vector<int>> directed;
-  std::map<std::pair<int, int>, std::vector<int>> undirected;
+  std::unordered_map<std::uint64_t, std::vector<int>> undirected;
   for (int f = 0; f < nf; ++f) {
     if (!usable[static_cast<std::size_t>(f)]) continue;
     const auto& face = mesh.faces[static_cast<std::size_t>(f)];
@@ -306,13 +306,21 @@ bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::Dia
       const int a = face[i];
       const int b = face[(i + 1) % face.size()];
       directed[pair_key(a, b)].push_back(f);
-      undirected[{std::min(a, b), std::max(a, b)}].push_back(f);
+      undirected[pair_key(std::min(a, b), std::max(a, b))].push_back(f);
     }
   }
   {
     KindReporter nonmanifold(sink, source, "P011", "non-manifold edges");
     KindReporter orientation(sink, source, "P012", "inconsistently oriented edges");
-    for (const auto& [edge, faces] : undirected) {
+    // Reported in vertex order, so the messages do not depend on hashing.
+    std::vector<std::uint64_t> keys;
+    keys.reserve(undirected.size());
+    for (const auto& entry : undirected) keys.push_back(entry.first);
+    std::sort(keys.begin(), keys.end());
+    for (const std::uint64_t key : keys) {
+      const std::vector<int>& faces = undirected.at(key);
+      const std::pair<int, int> edge{static_cast<int>(key >> 32),
+                                     static_cast<int>(key & 0xffffffffu)};
       const std::string ename = "edge between " + vname(edge.first) + " and " + vname(edge.second);
       if (faces.size() > 2) {
         std::string list;

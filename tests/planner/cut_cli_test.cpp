@@ -17,9 +17,9 @@ using wearknit::test::write_file;
 TEST(CutCliTest, WritesTheCutFolder) {
   WEARKNIT_REQUIRE_SHARED(shared);
   const auto dir = make_temp_dir("cut_cli");
-  const auto result = run_wearknit("cut " + (shared / "meshes" / "sphere-qd.obj").string() +
-                                   " --units cm -o " + (dir / "out").string() +
-                                   " --seed 3 --picture-px 100");
+  const auto result =
+      run_wearknit("cut " + (shared / "meshes" / "sphere-qd.obj").string() + " --units cm -o " +
+                   (dir / "out").string() + " --seed 3 --picture-px 100");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   for (const char* name : {"proxy.obj", "cut-mesh.obj", "cuts.json", "labels.json", "report.json",
                            "cuts-3d.png", "layout-2d.png"}) {
