@@ -111,15 +111,30 @@ void build_disc(CutMesh& cut) {
     corners.unite(h, q.next(t));
     corners.unite(q.next(h), t);
   }
+  // The first copy of every vertex of Q keeps Q's index, so cut-mesh.obj
+  // starts with proxy.obj's vertices in order and the copies made by the
+  // cuts follow: cuts.json's indices are then valid in both files.
+  const int nv = q.num_vertices();
   std::vector<int> id(at(q.num_halfedges()), -1);
-  cut.disc = PolygonMesh{};
-  cut.disc_source.clear();
+  std::vector<bool> taken(at(nv), false);
+  cut.disc = SurfaceMesh{};
+  cut.disc.positions.resize(at(nv));
+  cut.disc_source.resize(at(nv));
+  for (int v = 0; v < nv; ++v) {
+    cut.disc.positions[at(v)] = q.position(v);
+    cut.disc_source[at(v)] = v;
+  }
   for (int h = 0; h < q.num_halfedges(); ++h) {
     const int root = corners.find(h);
-    if (id[at(root)] < 0) {
+    if (id[at(root)] >= 0) continue;
+    const int v = q.from(h);
+    if (!taken[at(v)]) {
+      taken[at(v)] = true;
+      id[at(root)] = v;
+    } else {
       id[at(root)] = static_cast<int>(cut.disc_source.size());
-      cut.disc_source.push_back(q.from(h));
-      cut.disc.positions.push_back(q.position(q.from(h)));
+      cut.disc_source.push_back(v);
+      cut.disc.positions.push_back(q.position(v));
     }
   }
   cut.disc.faces.resize(at(q.num_faces()));

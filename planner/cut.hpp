@@ -70,7 +70,7 @@ struct CutMesh {
   std::vector<int> motorcycle_edges;        // per edge of Q: how many motorcycles crossed it
   // The disc: the faces of Q in the same order and corner order, with the
   // vertices along cuts duplicated. disc_source[i] is Q's vertex of disc vertex i.
-  PolygonMesh disc;
+  SurfaceMesh disc;
   std::vector<int> disc_source;
   std::vector<CutArc> arcs;
   int seed_face = -1;

@@ -18,12 +18,12 @@ using Vec3 = Eigen::Vector3d;
 // Faces are lists of vertex indices (0-based), counter-clockwise seen from
 // outside. No connectivity is implied; `check_mesh` (mesh_io.hpp) says
 // whether a soup is a usable surface.
-struct PolygonMesh {
+struct SurfaceMesh {
   std::vector<Vec3> positions;
   std::vector<std::vector<int>> faces;
 };
 
-// Half-edge connectivity over a PolygonMesh that is an oriented 2-manifold
+// Half-edge connectivity over a SurfaceMesh that is an oriented 2-manifold
 // (with or without boundary). Half-edge ids are dense: the half-edges of face
 // f are face_start(f) .. face_start(f) + degree(f) - 1 in the face's corner
 // order, half-edge face_start(f) + i going from corner i to corner i + 1.
@@ -32,9 +32,9 @@ struct PolygonMesh {
 class HalfedgeMesh {
  public:
   HalfedgeMesh() = default;
-  explicit HalfedgeMesh(PolygonMesh mesh);
+  explicit HalfedgeMesh(SurfaceMesh mesh);
 
-  const PolygonMesh& polygons() const { return mesh_; }
+  const SurfaceMesh& polygons() const { return mesh_; }
   const Vec3& position(int v) const { return mesh_.positions[static_cast<std::size_t>(v)]; }
 
   int num_vertices() const { return static_cast<int>(mesh_.positions.size()); }
@@ -76,7 +76,7 @@ class HalfedgeMesh {
   int euler_characteristic() const { return num_vertices() - num_edges() + num_faces(); }
 
  private:
-  PolygonMesh mesh_;
+  SurfaceMesh mesh_;
   std::vector<int> face_start_{0};
   std::vector<int> face_;
   std::vector<int> from_;

@@ -27,7 +27,7 @@ struct ProxyParams {
 };
 
 struct ProxyResult {
-  PolygonMesh mesh;  // quads and triangles only
+  SurfaceMesh mesh;  // quads and triangles only
   bool remeshed = false;
   double edge_mm = 0.0;  // the target edge length used (remeshed), else the mean edge length
   int polygons_split = 0;
@@ -41,12 +41,12 @@ struct ProxyResult {
 };
 
 // More than half of the faces are quads.
-bool is_quad_dominant(const PolygonMesh& mesh);
+bool is_quad_dominant(const SurfaceMesh& mesh);
 
 // Splits every face with more than 4 corners in place; returns how many were split.
-int split_polygons(PolygonMesh& mesh);
+int split_polygons(SurfaceMesh& mesh);
 
 // The proxy Q of a checked mesh (mesh_io.hpp check_mesh).
-ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params);
+ProxyResult make_proxy(const SurfaceMesh& input, const ProxyParams& params);
 
 }  // namespace planner

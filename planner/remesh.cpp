@@ -36,7 +36,7 @@ using TriMesh = OpenMesh::TriMesh_ArrayKernelT<TriTraits>;
 
 // Shortest edges collapse first until none is shorter than `target`; normal
 // flips are refused and OpenMesh's link condition keeps the topology.
-PolygonMesh decimate(const PolygonMesh& input, double target) {
+SurfaceMesh decimate(const SurfaceMesh& input, double target) {
   TriMesh tri;
   std::vector<TriMesh::VertexHandle> handles;
   handles.reserve(input.positions.size());
@@ -69,7 +69,7 @@ PolygonMesh decimate(const PolygonMesh& input, double target) {
     decimater.decimate();
   }
   tri.garbage_collection();
-  PolygonMesh out;
+  SurfaceMesh out;
   out.positions.reserve(tri.n_vertices());
   for (const auto vh : tri.vertices()) {
     const auto& p = tri.point(vh);
@@ -83,7 +83,7 @@ PolygonMesh decimate(const PolygonMesh& input, double target) {
   return out;
 }
 
-double mean_edge_length(const PolygonMesh& mesh) {
+double mean_edge_length(const SurfaceMesh& mesh) {
   double total = 0.0;
   std::size_t count = 0;
   for (const auto& face : mesh.faces) {
@@ -97,8 +97,8 @@ double mean_edge_length(const PolygonMesh& mesh) {
 }
 
 // 1-to-4 midpoint subdivision of a triangle mesh (positions unchanged).
-PolygonMesh subdivide(const PolygonMesh& mesh) {
-  PolygonMesh out;
+SurfaceMesh subdivide(const SurfaceMesh& mesh) {
+  SurfaceMesh out;
   out.positions = mesh.positions;
   std::map<std::pair<int, int>, int> midpoint;
   auto mid = [&](int a, int b) {
@@ -124,8 +124,8 @@ PolygonMesh subdivide(const PolygonMesh& mesh) {
 
 }  // namespace
 
-PolygonMesh resample(const PolygonMesh& input, double target_mm, double keep_above) {
-  PolygonMesh tri;
+SurfaceMesh resample(const SurfaceMesh& input, double target_mm, double keep_above) {
+  SurfaceMesh tri;
   tri.positions = input.positions;
   for (const auto& face : input.faces) {
     for (std::size_t i = 1; i + 1 < face.size(); ++i)
@@ -137,7 +137,7 @@ PolygonMesh resample(const PolygonMesh& input, double target_mm, double keep_abo
   while (mean_edge_length(tri) > 2.0 * target_mm && tri.faces.size() < 4000000)
     tri = subdivide(tri);
   if (mean_edge_length(tri) >= keep_above * target_mm) return tri;
-  PolygonMesh decimated = decimate(tri, target_mm);
+  SurfaceMesh decimated = decimate(tri, target_mm);
   knitout::DiagnosticSink sink;
   // OpenMesh keeps the topology; should a collapse still leave a fold, the
   // finer mesh is the safe answer.
@@ -270,7 +270,7 @@ struct UnionFind {
 
 // A vertex whose faces form several fans (sheets touching at a point) gets
 // one copy per fan, so the surface becomes a manifold there.
-void split_pinched_vertices(PolygonMesh& mesh) {
+void split_pinched_vertices(SurfaceMesh& mesh) {
   std::vector<int> start(mesh.faces.size() + 1, 0);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     start[f + 1] = start[f] + static_cast<int>(mesh.faces[f].size());
@@ -305,7 +305,7 @@ void split_pinched_vertices(PolygonMesh& mesh) {
 
 // Crumbs of a few faces left where the lattice folded are dropped; a
 // second big component is kept (and fails the topology check).
-void keep_largest_component(PolygonMesh& mesh) {
+void keep_largest_component(SurfaceMesh& mesh) {
   UnionFind vertices(mesh.positions.size());
   for (const auto& face : mesh.faces) {
     for (std::size_t i = 1; i < face.size(); ++i) vertices.unite(face[0], face[i]);
@@ -340,7 +340,7 @@ void keep_largest_component(PolygonMesh& mesh) {
 
 }  // namespace
 
-std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input,
+std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
                                                 const RemeshParams& params, RemeshStats& stats) {
   const double s = params.edge_mm;
   // Samples about half a lattice step apart, so every lattice cell holds some.
@@ -486,7 +486,7 @@ std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input,
   };
   // Faces: from a -> b, turn to the neighbour of b just clockwise of a.
   std::map<std::pair<int, int>, bool> used;
-  PolygonMesh out;
+  SurfaceMesh out;
   out.positions = position;
   for (int a0 = 0; a0 < nc; ++a0) {
     for (int b0 : adjacent[at(a0)]) {
@@ -540,7 +540,7 @@ std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input,
   }
   // Drop output vertices no face uses, and renumber.
   std::vector<int> index(at(nc), -1);
-  PolygonMesh compact;
+  SurfaceMesh compact;
   for (auto& face : out.faces) {
     for (int& v : face) {
       if (index[at(v)] < 0) {

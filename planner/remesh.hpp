@@ -21,7 +21,7 @@ namespace planner {
 // mean edge is still below keep_above * target_mm is decimated (OpenMesh's
 // decimater, shortest edges first; its link condition keeps the topology,
 // normal flips are refused). The result is checked like any input.
-PolygonMesh resample(const PolygonMesh& input, double target_mm, double keep_above = 0.5);
+SurfaceMesh resample(const SurfaceMesh& input, double target_mm, double keep_above = 0.5);
 
 // Of the four directions o, n x o, -o, -n x o: the one closest to `target`.
 Vec3 closest_representative(const Vec3& o, const Vec3& n, const Vec3& target);
@@ -47,7 +47,7 @@ struct RemeshStats {
 // triangulated) with the same Euler characteristic and number of boundary
 // loops, or nullopt (with stats.failure saying why) when the extraction did
 // not give one connected, consistently oriented manifold of that topology.
-std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input,
+std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
                                                 const RemeshParams& params, RemeshStats& stats);
 
 }  // namespace planner

@@ -15,7 +15,7 @@
 namespace planner {
 namespace {
 
-CutMesh cut_of(const PolygonMesh& mesh, std::uint64_t seed = 1, double cs = 1000, double co = 1) {
+CutMesh cut_of(const SurfaceMesh& mesh, std::uint64_t seed = 1, double cs = 1000, double co = 1) {
   CutParams params;
   params.seed = seed;
   params.cs = cs;
@@ -34,7 +34,7 @@ std::set<int> disc_boundary_sources(const CutMesh& cut) {
 }
 
 TEST(LabelsTest, VanishingCornerIsTheMostAcuteCornerOfATriangle) {
-  PolygonMesh mesh;
+  SurfaceMesh mesh;
   mesh.positions = {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}};  // corner at vertex 0 is the sharpest
   mesh.faces = {{1, 2, 0}};
   const FieldLabels labels = label_field(HalfedgeMesh(mesh));
@@ -124,7 +124,7 @@ TEST(CutTest, StraightnessWeightPutsCutsOnMotorcycleEdges) {
     }
     return all == 0 ? 0.0 : static_cast<double>(on) / all;
   };
-  const PolygonMesh cube = test_meshes::cube(6);
+  const SurfaceMesh cube = test_meshes::cube(6);
   double with = 0, without = 0;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     with += fraction_on_motorcycles(cut_of(cube, seed, 1000, 0));
@@ -135,7 +135,7 @@ TEST(CutTest, StraightnessWeightPutsCutsOnMotorcycleEdges) {
 }
 
 TEST(CutTest, SameSeedSameCutOtherSeedOtherSeedFace) {
-  const PolygonMesh cube = test_meshes::cube(5);
+  const SurfaceMesh cube = test_meshes::cube(5);
   const CutMesh a = cut_of(cube, 7);
   const CutMesh b = cut_of(cube, 7);
   EXPECT_EQ(a.cut_edge, b.cut_edge);
@@ -179,6 +179,11 @@ TEST(CutIoTest, FolderRoundTrips) {
   EXPECT_EQ(back->arcs.size(), cut.arcs.size());
   EXPECT_EQ(back->labels.irregular_vertices, cut.labels.irregular_vertices);
   EXPECT_TRUE(verify_cut(*back).empty());
+  // cut-mesh.obj starts with proxy.obj's vertices in order, the cut copies follow.
+  ASSERT_GT(cut.disc_source.size(), static_cast<std::size_t>(cut.proxy.num_vertices()));
+  for (int v = 0; v < cut.proxy.num_vertices(); ++v) {
+    EXPECT_EQ(cut.disc_source[static_cast<std::size_t>(v)], v);
+  }
   std::filesystem::remove_all(dir);
 }
 

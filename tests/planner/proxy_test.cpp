@@ -9,7 +9,7 @@ namespace planner {
 namespace {
 
 TEST(ProxyTest, QuadDominantMeansMoreThanHalfQuads) {
-  PolygonMesh mesh = test_meshes::grid(2, 1);
+  SurfaceMesh mesh = test_meshes::grid(2, 1);
   EXPECT_TRUE(is_quad_dominant(mesh));
   mesh.positions.emplace_back(3, 0, 0);
   mesh.faces.push_back({2, 6, 5});
@@ -23,7 +23,7 @@ TEST(ProxyTest, PentagonIsSplitThroughItsLargestCorner) {
   // vertex 3) and 141.3 degrees (vertex 4, the largest). Of the two
   // diagonals from vertex 4, 4-2 halves its corner best (51.3 / 90 degrees
   // against 45 / 96.3 for 4-1): a quad 4-0-1-2 and a triangle 4-2-3.
-  PolygonMesh mesh;
+  SurfaceMesh mesh;
   mesh.positions = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0.8, 3, 0}, {0, 2, 0}};
   mesh.faces = {{0, 1, 2, 3, 4}};
   EXPECT_EQ(split_polygons(mesh), 1);
@@ -33,14 +33,14 @@ TEST(ProxyTest, PentagonIsSplitThroughItsLargestCorner) {
 }
 
 TEST(ProxyTest, QuadsAndTrianglesAreNotSplit) {
-  PolygonMesh mesh = test_meshes::grid(2, 2);
+  SurfaceMesh mesh = test_meshes::grid(2, 2);
   const auto before = mesh.faces;
   EXPECT_EQ(split_polygons(mesh), 0);
   EXPECT_EQ(mesh.faces, before);
 }
 
 TEST(ProxyTest, HexagonBecomesTwoQuadsAndHeptagonQuadPlusPentagonSplit) {
-  PolygonMesh hexagon;
+  SurfaceMesh hexagon;
   const double pi = std::acos(-1.0);
   for (int i = 0; i < 6; ++i)
     hexagon.positions.emplace_back(std::cos(pi * i / 3), std::sin(pi * i / 3), 0);
@@ -50,7 +50,7 @@ TEST(ProxyTest, HexagonBecomesTwoQuadsAndHeptagonQuadPlusPentagonSplit) {
   EXPECT_EQ(hexagon.faces[0].size(), 4u);
   EXPECT_EQ(hexagon.faces[1].size(), 4u);
 
-  PolygonMesh heptagon;
+  SurfaceMesh heptagon;
   for (int i = 0; i < 7; ++i)
     heptagon.positions.emplace_back(std::cos(2 * pi * i / 7), std::sin(2 * pi * i / 7), 0);
   heptagon.faces = {{0, 1, 2, 3, 4, 5, 6}};
@@ -63,7 +63,7 @@ TEST(ProxyTest, HexagonBecomesTwoQuadsAndHeptagonQuadPlusPentagonSplit) {
 }
 
 TEST(ProxyTest, QuadDominantInputIsKept) {
-  const PolygonMesh mesh = test_meshes::torus(8, 6);
+  const SurfaceMesh mesh = test_meshes::torus(8, 6);
   const ProxyResult proxy = make_proxy(mesh, {});
   EXPECT_FALSE(proxy.remeshed);
   EXPECT_EQ(proxy.mesh.faces, mesh.faces);
@@ -71,7 +71,7 @@ TEST(ProxyTest, QuadDominantInputIsKept) {
 
 TEST(ProxyTest, TriangleInputIsRemeshedIntoQuadDominantSurfaceOfSameTopology) {
   // Triangulate a fine torus, then ask for a coarser proxy.
-  PolygonMesh tri = test_meshes::torus(30, 12);
+  SurfaceMesh tri = test_meshes::torus(30, 12);
   std::vector<std::vector<int>> faces;
   for (const auto& f : tri.faces) {
     faces.push_back({f[0], f[1], f[2]});
