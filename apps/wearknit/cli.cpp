@@ -37,6 +37,11 @@ const std::vector<Verb>& verbs() {
        "show a machine's job and counters; pause, continue or cancel it", run_status},
       {"mock-device", "mock-device --listen URI --store DIR [--fault SPEC] [--rows-per-s N]",
        "the loopback mock knitting machine", run_mock_device},
+      {"cut",
+       "cut GARMENT -o DIR [--seed N] [--cs 1000] [--co 1] [--units mm|cm|m] [--scale S] "
+       "[--proxy-edge-mm L]",
+       "cut a garment surface into one disc with consistent course/wale labels (paper §4)",
+       run_cut},
   };
   return kVerbs;
 }

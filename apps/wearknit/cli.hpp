@@ -71,5 +71,6 @@ int run_mock_device(const std::vector<std::string>& args, Context& context);
 // The checks a device runs on a received job before knitting it, made of the
 // project's own readers (verb_mock_device.cpp).
 devices::JobCheckers project_job_checkers();
+int run_cut(const std::vector<std::string>& args, Context& context);
 
 }  // namespace wearknit::cli
