@@ -118,8 +118,8 @@ std::vector<std::string> validate(const CoverMesh& mesh) {
   return problems;
 }
 
-CutArc arc_from_path(const std::vector<int>& path, std::string name) {
-  CutArc arc;
+CoverArc arc_from_path(const std::vector<int>& path, std::string name) {
+  CoverArc arc;
   arc.name = std::move(name);
   for (std::size_t i = 0; i + 1 < path.size(); ++i) arc.edges.push_back({path[i], path[i + 1]});
   return arc;

@@ -39,7 +39,7 @@ namespace planner {
 
 using cloth::Vec3;
 
-struct CutArc {
+struct CoverArc {
   std::string name;                       // for reports; may be empty
   std::vector<std::array<int, 2>> edges;  // vertex pairs of CoverMesh::vertices
 };
@@ -47,7 +47,7 @@ struct CutArc {
 struct CoverMesh {
   std::vector<Vec3> vertices;           // welded: one vertex per point of the garment
   std::vector<std::vector<int>> faces;  // polygons, counter-clockwise seen from outside
-  std::vector<CutArc> arcs;
+  std::vector<CoverArc> arcs;
 };
 
 // Problems that make the mesh unusable, each a sentence naming the element
@@ -57,7 +57,7 @@ struct CoverMesh {
 std::vector<std::string> validate(const CoverMesh& mesh);
 
 // The arc through the vertex path p0, p1, ... (consecutive pairs).
-CutArc arc_from_path(const std::vector<int>& path, std::string name = {});
+CoverArc arc_from_path(const std::vector<int>& path, std::string name = {});
 // Shortest path along mesh edges (Euclidean edge lengths) from `from` to `to`
 // (inclusive); empty when they are not connected.
 std::vector<int> shortest_edge_path(const CoverMesh& mesh, int from, int to);

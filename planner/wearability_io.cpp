@@ -144,7 +144,7 @@ std::optional<CoverMesh> read_cover_mesh(const PolygonMesh& cut_mesh, const nloh
   for (std::size_t a = 0; a < arcs.size(); ++a) {
     const auto& entry = arcs[a];
     const std::string where = "arc " + std::to_string(a);
-    CutArc arc;
+    CoverArc arc;
     if (entry.is_object() && entry.contains("id")) arc.name = entry["id"].dump();
     if (entry.is_object() && entry.contains("edges") && entry["edges"].is_array()) {
       for (const auto& edge : entry["edges"]) {

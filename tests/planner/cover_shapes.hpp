@@ -81,13 +81,13 @@ inline CoverMesh torus_mesh(double major, double minor, int nu, int nv) {
 // band of cloth closed around the tube.
 inline CoverMesh torus_cover(double major, double minor, int nu, int nv, int pieces) {
   CoverMesh mesh = torus_mesh(major, minor, nu, nv);
-  planner::CutArc meridian{"meridian", {}};
+  planner::CoverArc meridian{"meridian", {}};
   for (int j = 0; j < nv; ++j) {
     meridian.edges.push_back({torus_vertex(nu, nv, 0, j), torus_vertex(nu, nv, 0, j + 1)});
   }
   mesh.arcs.push_back(meridian);
   for (int p = 0; p < pieces; ++p) {
-    planner::CutArc equator{"equator-" + std::to_string(p), {}};
+    planner::CoverArc equator{"equator-" + std::to_string(p), {}};
     for (int i = p * nu / pieces; i < (p + 1) * nu / pieces; ++i) {
       equator.edges.push_back({torus_vertex(nu, nv, i, 0), torus_vertex(nu, nv, i + 1, 0)});
     }

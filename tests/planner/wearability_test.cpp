@@ -191,8 +191,8 @@ TEST(WearabilityTest, ShellWithAShortSlitIsRejectedAndNothingSewn) {
 
 // Arc along the torus-qd surface through points of a circle: the nearest
 // vertices of `count` + 1 points, joined by shortest edge paths.
-planner::CutArc arc_through(const CoverMesh& mesh, const std::vector<Vec3>& points,
-                            const std::string& name) {
+planner::CoverArc arc_through(const CoverMesh& mesh, const std::vector<Vec3>& points,
+                              const std::string& name) {
   std::vector<int> path;
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
     auto piece = planner::shortest_edge_path(mesh, planner::nearest_vertex(mesh, points[i]),
