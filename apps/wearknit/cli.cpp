@@ -13,6 +13,11 @@ const std::vector<Verb>& verbs() {
       {"fmt", "fmt FILE.k [-o OUT.k] [--check]", "write a knitout file in canonical form", run_fmt},
       {"demo", "demo [-o DIR]", "run the built-in example end to end and say what to open",
        run_demo},
+      {"cut",
+       "cut GARMENT -o DIR [--seed N] [--cs 1000] [--co 1] [--units mm|cm|m] [--scale S] "
+       "[--proxy-edge-mm L]",
+       "cut a garment surface into one disc with consistent course/wale labels (paper §4)",
+       run_cut},
   };
   return kVerbs;
 }

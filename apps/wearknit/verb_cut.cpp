@@ -1,0 +1,146 @@
+// wearknit cut: garment mesh -> quad-dominant proxy -> one disc (§4).
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <ostream>
+
+#include "apps/wearknit/cli.hpp"
+#include "planner/cut.hpp"
+#include "planner/cut_io.hpp"
+#include "planner/mesh_io.hpp"
+#include "planner/pictures.hpp"
+#include "planner/proxy.hpp"
+
+namespace wearknit::cli {
+
+namespace po = boost::program_options;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+int run_cut(const std::vector<std::string>& args, Context& context) {
+  std::string input;
+  std::string output;
+  std::string units;
+  std::string format_name;
+  double scale = 1.0;
+  double proxy_edge_mm = 0.0;
+  std::uint64_t seed = 1;
+  planner::CutParams params;
+  po::options_description options("options");
+  options.add_options()("garment", po::value<std::string>(&input)->required(),
+                        "garment surface (OBJ, OFF, PLY or STL)")(
+      "output,o", po::value<std::string>(&output)->required(), "write the cut folder here")(
+      "seed", po::value<std::uint64_t>(&seed)->default_value(1),
+      "picks the seed quad and breaks ties between equal scores")(
+      "cs", po::value<double>(&params.cs)->default_value(1000.0),
+      "straightness weight c_s (motorcycle-graph edges, §4.2)")(
+      "co", po::value<double>(&params.co)->default_value(1.0), "overlap weight c_o (§4.2)")(
+      "units", po::value<std::string>(&units)->default_value("mm"),
+      "unit of the file's coordinates: mm, cm or m")(
+      "scale", po::value<double>(&scale)->default_value(1.0), "multiply coordinates by this")(
+      "proxy-edge-mm", po::value<double>(&proxy_edge_mm)->default_value(0.0),
+      "edge length of the remeshed proxy for triangle input (0: about 3000 quads)")(
+      "no-pictures", "do not draw cuts-3d.png and layout-2d.png")(
+      "format", po::value<std::string>(&format_name)->default_value("text"),
+      "diagnostics as text (stderr) or json (stdout)")("json", "same as --format json")(
+      "quiet,q", "print nothing on success");
+  po::positional_options_description positional;
+  positional.add("garment", 1);
+  po::variables_map values;
+  if (auto code = parse_options(args, *find_verb("cut"), options, positional, values, context)) {
+    return *code;
+  }
+  auto format = parse_diagnostic_format(values.count("json") ? "json" : format_name);
+  if (!format || *format == DiagnosticFormat::Junit || *format == DiagnosticFormat::Github) {
+    context.err << "wearknit cut: --format takes text or json, not '" << format_name << "'\n";
+    return kExitUsage;
+  }
+  const auto mm_per_unit = planner::mm_per_unit(units);
+  if (!mm_per_unit) {
+    context.err << "wearknit cut: --units takes mm, cm or m, not '" << units << "'\n";
+    return kExitUsage;
+  }
+  if (!(scale > 0.0) || !std::isfinite(scale)) {
+    context.err << "wearknit cut: --scale must be a positive number\n";
+    return kExitUsage;
+  }
+  if (!(proxy_edge_mm >= 0.0) || params.cs < 0.0 || params.co < 0.0) {
+    context.err << "wearknit cut: --proxy-edge-mm, --cs and --co must not be negative\n";
+    return kExitUsage;
+  }
+  params.seed = seed;
+
+  planner::CutReport report;
+  report.input = input;
+  report.units = units;
+  report.scale = scale;
+  report.params = params;
+  knitout::DiagnosticSink sink;
+  auto start = std::chrono::steady_clock::now();
+  const bool input_exists = std::filesystem::is_regular_file(input);
+  auto mesh = planner::load_mesh(input, {*mm_per_unit, scale}, sink);
+  print_diagnostics(context, sink.diagnostics(), *format);
+  if (!mesh) return input_exists ? kExitInvalid : kExitUsage;
+  report.load_seconds = seconds_since(start);
+  report.input_size_mm = planner::bounding_box_size(*mesh);
+  report.input_vertices = static_cast<int>(mesh->positions.size());
+  report.input_faces = static_cast<int>(mesh->faces.size());
+
+  start = std::chrono::steady_clock::now();
+  planner::ProxyParams proxy_params;
+  proxy_params.proxy_edge_mm = proxy_edge_mm;
+  planner::ProxyResult proxy = planner::make_proxy(*mesh, proxy_params);
+  report.remeshed = proxy.remeshed;
+  report.proxy_edge_mm = proxy.edge_mm;
+  report.polygons_split = proxy.polygons_split;
+  report.triangles_paired = proxy.triangles_paired;
+  report.proxy_seconds = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  planner::CutMesh cut = planner::cut_surface(planner::HalfedgeMesh(std::move(proxy.mesh)), params);
+  report.cut_seconds = seconds_since(start);
+  const std::vector<std::string> problems = planner::verify_cut(cut);
+  if (!problems.empty()) {
+    // A broken invariant is a bug of ours, not of the input: say so loudly.
+    context.err << "wearknit cut: internal error: the cut violates its guarantees:\n";
+    for (const auto& p : problems) context.err << "  " << p << '\n';
+    return kExitInvalid;
+  }
+
+  std::string failure = planner::write_cut_result(output, cut, report);
+  if (failure.empty() && values.count("no-pictures") == 0) {
+    failure = planner::draw_cuts_3d(cut, (std::filesystem::path(output) / "cuts-3d.png").string());
+    if (failure.empty()) {
+      failure =
+          planner::draw_layout_2d(cut, (std::filesystem::path(output) / "layout-2d.png").string());
+    }
+  }
+  if (!failure.empty()) {
+    context.err << "wearknit cut: " << failure << '\n';
+    return kExitUsage;
+  }
+  if (values.count("quiet") == 0 && *format == DiagnosticFormat::Text) {
+    const planner::CutSummary s = planner::summarize(cut);
+    context.out << std::fixed << std::setprecision(1) << input << ": " << report.input_size_mm.x()
+                << " x " << report.input_size_mm.y() << " x " << report.input_size_mm.z()
+                << " mm; proxy " << cut.proxy.num_faces() << " faces"
+                << (proxy.remeshed ? " (remeshed)" : " (input as is)") << "\n"
+                << "cut: " << s.irregular_vertices << " irregular vertices, " << s.cut_edges
+                << " cut edges in " << s.arcs << " arcs, " << s.cut_length_mm << " mm, "
+                << s.overlapping_faces << " overlapping faces, " << std::setprecision(3)
+                << report.proxy_seconds + report.cut_seconds << " s\n"
+                << "wrote " << output
+                << "/{proxy.obj,cut-mesh.obj,cuts.json,labels.json,report.json"
+                << (values.count("no-pictures") ? "" : ",cuts-3d.png,layout-2d.png") << "}\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace wearknit::cli

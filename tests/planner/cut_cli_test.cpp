@@ -1,0 +1,66 @@
+// End-to-end tests of `wearknit cut`.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/test_support.hpp"
+
+namespace planner {
+namespace {
+
+using wearknit::test::make_temp_dir;
+using wearknit::test::read_file;
+using wearknit::test::run_wearknit;
+using wearknit::test::write_file;
+
+TEST(CutCliTest, WritesTheCutFolder) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const auto dir = make_temp_dir("cut_cli");
+  const auto result = run_wearknit("cut " + (shared / "meshes" / "sphere-qd.obj").string() +
+                                   " --units cm -o " + (dir / "out").string() + " --seed 3");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  for (const char* name : {"proxy.obj", "cut-mesh.obj", "cuts.json", "labels.json", "report.json",
+                           "cuts-3d.png", "layout-2d.png"}) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / name)) << name;
+  }
+  const auto report = nlohmann::json::parse(read_file(dir / "out" / "report.json"));
+  EXPECT_EQ(report["params"]["seed"], 3);
+  EXPECT_EQ(report["disc"]["euler_characteristic"], 1);
+  EXPECT_EQ(report["disc"]["boundary_loops"], 1);
+  EXPECT_EQ(report["proxy"]["remeshed"], false);
+  // sphere-qd spans 2 units; in cm that is 20 mm.
+  EXPECT_NEAR(report["input"]["size_mm"][0].get<double>(), 20.0, 0.5);
+  const auto cuts = nlohmann::json::parse(read_file(dir / "out" / "cuts.json"));
+  EXPECT_EQ(cuts["arcs"].size(), report["arcs"].get<std::size_t>());
+  double total = 0;
+  for (const auto& arc : cuts["arcs"]) total += arc["length_mm"].get<double>();
+  EXPECT_NEAR(total, cuts["cut_length_mm"].get<double>(), 1e-6);
+  EXPECT_NE(result.out.find("mm; proxy 691 faces (input as is)"), std::string::npos) << result.out;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CutCliTest, BadMeshExitsOneNamingTheElementAndWritesNothing) {
+  const auto dir = make_temp_dir("cut_cli_bad");
+  write_file(dir / "bowtie.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n");
+  const auto result =
+      run_wearknit("cut " + (dir / "bowtie.obj").string() + " -o " + (dir / "out").string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, (dir / "bowtie.obj").string() +
+                            ": error: [P013] vertex 1 joins surface sheets that share no edge "
+                            "there (a pinch point); split the vertex or connect the sheets\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CutCliTest, UsageErrorsExitTwo) {
+  EXPECT_EQ(run_wearknit("cut").exit_code, 2);
+  const auto units = run_wearknit("cut x.obj -o out --units inch");
+  EXPECT_EQ(units.exit_code, 2);
+  EXPECT_EQ(units.err, "wearknit cut: --units takes mm, cm or m, not 'inch'\n");
+  const auto missing = run_wearknit("cut /nonexistent/x.obj -o out");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_EQ(missing.err, "/nonexistent/x.obj: error: [P001] cannot open file\n");
+}
+
+}  // namespace
+}  // namespace planner

@@ -1,0 +1,250 @@
+#include "planner/cut.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "planner/cut_io.hpp"
+#include "planner/mesh_io.hpp"
+#include "planner/proxy.hpp"
+#include "tests/planner/test_meshes.hpp"
+#include "tests/test_support.hpp"
+
+namespace planner {
+namespace {
+
+CutMesh cut_of(const PolygonMesh& mesh, std::uint64_t seed = 1, double cs = 1000, double co = 1) {
+  CutParams params;
+  params.seed = seed;
+  params.cs = cs;
+  params.co = co;
+  return cut_surface(HalfedgeMesh(mesh), params);
+}
+
+// Q's vertices that lie on the boundary of the disc.
+std::set<int> disc_boundary_sources(const CutMesh& cut) {
+  const HalfedgeMesh disc(cut.disc);
+  std::set<int> out;
+  for (int v = 0; v < disc.num_vertices(); ++v) {
+    if (disc.is_boundary_vertex(v)) out.insert(cut.disc_source[static_cast<std::size_t>(v)]);
+  }
+  return out;
+}
+
+TEST(LabelsTest, VanishingCornerIsTheMostAcuteCornerOfATriangle) {
+  PolygonMesh mesh;
+  mesh.positions = {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}};  // corner at vertex 0 is the sharpest
+  mesh.faces = {{1, 2, 0}};
+  const FieldLabels labels = label_field(HalfedgeMesh(mesh));
+  EXPECT_EQ(labels.vanishing_corner[0], 2);  // corner index of vertex 0 in the face
+  // Its two sides are opposite: directions d, d+1, d+2 around the face.
+  const HalfedgeMesh q(mesh);
+  EXPECT_EQ(halfedge_direction(q, labels, 0, 0), 0);
+  EXPECT_EQ(halfedge_direction(q, labels, 0, 1), 1);
+  EXPECT_EQ(halfedge_direction(q, labels, 0, 2), 3);  // turns by 2 only at the vanishing corner
+}
+
+TEST(LabelsTest, CubeCornersAreTheIrregularVertices) {
+  const HalfedgeMesh q(test_meshes::cube(3));
+  const FieldLabels labels = label_field(q);
+  EXPECT_EQ(labels.irregular_vertices.size(), 8u);
+  EXPECT_EQ(labels.singular_vertices.size(), 8u);
+  for (int v : labels.irregular_vertices) EXPECT_EQ(labels.corner_count[static_cast<std::size_t>(v)], 3);
+}
+
+TEST(LabelsTest, GridHasNoIrregularVertexBoundaryIgnored) {
+  const FieldLabels labels = label_field(HalfedgeMesh(test_meshes::grid(4, 3)));
+  EXPECT_TRUE(labels.irregular_vertices.empty());
+}
+
+TEST(CutTest, DiscNeedsNoCut) {
+  const CutMesh cut = cut_of(test_meshes::grid(6, 5));
+  EXPECT_TRUE(verify_cut(cut).empty());
+  const CutSummary s = summarize(cut);
+  EXPECT_EQ(s.cut_edges, 0);
+  EXPECT_EQ(s.arcs, 0);
+  EXPECT_EQ(s.overlapping_faces, 0);
+  // Each face sits in its own cell: the grid is its own parameterisation.
+  std::set<std::pair<int, int>> cells;
+  for (const auto& uv : cut.face_uv) cells.insert({uv[0], uv[1]});
+  EXPECT_EQ(cells.size(), 30u);
+}
+
+TEST(CutTest, RegularTorusIsOpenedByTwoLoops) {
+  const CutMesh cut = cut_of(test_meshes::torus(10, 6));
+  const auto problems = verify_cut(cut);
+  EXPECT_TRUE(problems.empty()) << problems.front();
+  const CutSummary s = summarize(cut);
+  EXPECT_EQ(s.euler_characteristic, 1);
+  EXPECT_EQ(s.boundary_loops, 1);
+  EXPECT_GE(s.cut_edges, 6 + 10 - 0);  // a meridian and a longitude at least... minus shared vertex
+  EXPECT_EQ(s.irregular_vertices, 0);
+  EXPECT_EQ(s.overlapping_faces, 0);
+}
+
+TEST(CutTest, SingularVerticesEndUpOnTheCut) {
+  const CutMesh cut = cut_of(test_meshes::cube(4), 3);
+  EXPECT_TRUE(verify_cut(cut).empty());
+  const std::set<int> boundary = disc_boundary_sources(cut);
+  for (int v : cut.labels.singular_vertices) EXPECT_TRUE(boundary.count(v)) << "vertex " << v;
+}
+
+TEST(CutTest, MotorcyclesRunStraightFromIrregularVertices) {
+  const CutMesh cut = cut_of(test_meshes::cube(4));
+  // On the 4x4-per-side cube the motorcycles from the 8 corners run along
+  // the cube's 12 edges (4 mesh edges each) and stop at the first visited
+  // vertex: every crossed edge lies on a cube edge.
+  int crossed = 0;
+  for (int e = 0; e < cut.proxy.num_edges(); ++e) {
+    if (cut.motorcycle_edges[static_cast<std::size_t>(e)] == 0) continue;
+    ++crossed;
+    const int h = cut.proxy.edge_halfedge(e);
+    const Vec3 a = cut.proxy.position(cut.proxy.from(h));
+    const Vec3 b = cut.proxy.position(cut.proxy.to(h));
+    int on_faces = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const bool extreme = (a[axis] == 0 || a[axis] == 4) && a[axis] == b[axis];
+      on_faces += extreme ? 1 : 0;
+    }
+    EXPECT_EQ(on_faces, 2) << "edge " << e << " is not on a cube edge";
+  }
+  EXPECT_EQ(crossed, 48);
+}
+
+TEST(CutTest, StraightnessWeightPutsCutsOnMotorcycleEdges) {
+  auto fraction_on_motorcycles = [](const CutMesh& cut) {
+    int on = 0, all = 0;
+    for (int e = 0; e < cut.proxy.num_edges(); ++e) {
+      if (!cut.cut_edge[static_cast<std::size_t>(e)]) continue;
+      ++all;
+      on += cut.motorcycle_edges[static_cast<std::size_t>(e)] > 0 ? 1 : 0;
+    }
+    return all == 0 ? 0.0 : static_cast<double>(on) / all;
+  };
+  const PolygonMesh cube = test_meshes::cube(6);
+  double with = 0, without = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    with += fraction_on_motorcycles(cut_of(cube, seed, 1000, 0));
+    without += fraction_on_motorcycles(cut_of(cube, seed, 0, 0));
+  }
+  EXPECT_GT(with / 4, 0.95);
+  EXPECT_LT(without / 4, with / 4);
+}
+
+TEST(CutTest, SameSeedSameCutOtherSeedOtherSeedFace) {
+  const PolygonMesh cube = test_meshes::cube(5);
+  const CutMesh a = cut_of(cube, 7);
+  const CutMesh b = cut_of(cube, 7);
+  EXPECT_EQ(a.cut_edge, b.cut_edge);
+  EXPECT_EQ(a.face_uv, b.face_uv);
+  std::set<int> seeds;
+  for (std::uint64_t s = 1; s <= 5; ++s) seeds.insert(cut_of(cube, s).seed_face);
+  EXPECT_GT(seeds.size(), 1u);
+}
+
+TEST(CutTest, VerifyCatchesABrokenCut) {
+  CutMesh cut = cut_of(test_meshes::torus(8, 6));
+  ASSERT_TRUE(verify_cut(cut).empty());
+  // Glue one cut edge back: the arcs no longer match and the disc changes.
+  const auto it = std::find(cut.cut_edge.begin(), cut.cut_edge.end(), true);
+  ASSERT_NE(it, cut.cut_edge.end());
+  *it = false;
+  EXPECT_FALSE(verify_cut(cut).empty());
+  // A flipped direction breaks label consistency.
+  CutMesh other = cut_of(test_meshes::grid(3, 3));
+  other.direction[0] = (other.direction[0] + 1) % 4;
+  const auto problems = verify_cut(other);
+  ASSERT_FALSE(problems.empty());
+  EXPECT_EQ(problems[0], "face 0: direction of side 0 does not follow its corners");
+}
+
+TEST(CutIoTest, FolderRoundTrips) {
+  const CutMesh cut = cut_of(test_meshes::cube(4), 2);
+  const auto dir = wearknit::test::make_temp_dir("cut_io");
+  CutReport report;
+  report.input = "cube";
+  ASSERT_EQ(write_cut_result(dir.string(), cut, report), "");
+  knitout::DiagnosticSink sink;
+  const auto back = read_cut_result(dir.string(), sink);
+  ASSERT_TRUE(back.has_value()) << knitout::format(sink.diagnostics().at(0));
+  EXPECT_EQ(back->proxy.polygons().faces, cut.proxy.polygons().faces);
+  EXPECT_EQ(back->cut_edge, cut.cut_edge);
+  EXPECT_EQ(back->direction, cut.direction);
+  EXPECT_EQ(back->face_uv, cut.face_uv);
+  EXPECT_EQ(back->disc.faces, cut.disc.faces);
+  EXPECT_EQ(back->disc_source, cut.disc_source);
+  EXPECT_EQ(back->arcs.size(), cut.arcs.size());
+  EXPECT_EQ(back->labels.irregular_vertices, cut.labels.irregular_vertices);
+  EXPECT_TRUE(verify_cut(*back).empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CutIoTest, MissingFolderIsADiagnostic) {
+  knitout::DiagnosticSink sink;
+  EXPECT_FALSE(read_cut_result("/nonexistent/cut", sink).has_value());
+  ASSERT_EQ(sink.diagnostics().size(), 4u);
+  EXPECT_EQ(knitout::format(sink.diagnostics()[0]),
+            "/nonexistent/cut/proxy.obj: error: [P020] missing: not a cut folder (run wearknit cut)");
+}
+
+TEST(CutIoTest, ArcOverANonEdgeIsADiagnostic) {
+  const CutMesh cut = cut_of(test_meshes::torus(6, 4));
+  const auto dir = wearknit::test::make_temp_dir("cut_io_bad");
+  ASSERT_EQ(write_cut_result(dir.string(), cut, {}), "");
+  std::string cuts = wearknit::test::read_file(dir / "cuts.json");
+  const auto pos = cuts.find("\"edges\": [");
+  ASSERT_NE(pos, std::string::npos);
+  cuts.insert(pos + 10, "[0, 99999], ");
+  wearknit::test::write_file(dir / "cuts.json", cuts);
+  knitout::DiagnosticSink sink;
+  EXPECT_FALSE(read_cut_result(dir.string(), sink).has_value());
+  ASSERT_EQ(sink.diagnostics().size(), 1u);
+  EXPECT_EQ(sink.diagnostics()[0].code, "P022");
+  EXPECT_NE(sink.diagnostics()[0].message.find("0-99999 is not an edge of proxy.obj"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+// Done-when of the cutting stage: every shared mesh, two seeds, one disc
+// with no interior singularity and consistent labels. Triangle meshes are
+// remeshed coarsely to keep the test fast.
+TEST(CutTest, EverySharedMeshBecomesOneDisc) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(shared / "meshes")) {
+    if (entry.path().extension() == ".obj") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 38u);
+  for (const auto& file : files) {
+    knitout::DiagnosticSink sink;
+    const auto mesh = load_mesh(file.string(), {}, sink);
+    ASSERT_TRUE(mesh.has_value()) << file << ": "
+                                  << (sink.diagnostics().empty() ? ""
+                                                                 : knitout::format(sink.diagnostics()[0]));
+    ProxyParams proxy_params;
+    proxy_params.auto_faces = 800;
+    const ProxyResult proxy = make_proxy(*mesh, proxy_params);
+    const HalfedgeMesh input(*mesh);
+    const HalfedgeMesh q(proxy.mesh);
+    // The proxy keeps the topology of the input.
+    EXPECT_EQ(q.euler_characteristic(), input.euler_characteristic()) << file;
+    EXPECT_EQ(q.count_boundary_loops(), input.count_boundary_loops()) << file;
+    for (std::uint64_t seed : {1u, 2u}) {
+      const CutMesh cut = cut_surface(q, {seed, 1000.0, 1.0});
+      const auto problems = verify_cut(cut);
+      EXPECT_TRUE(problems.empty()) << file << " seed " << seed << ": " << problems.front();
+      const HalfedgeMesh disc(cut.disc);
+      EXPECT_EQ(disc.euler_characteristic(), 1) << file << " seed " << seed;
+      EXPECT_EQ(disc.count_boundary_loops(), 1) << file << " seed " << seed;
+      const std::set<int> boundary = disc_boundary_sources(cut);
+      for (int v : cut.labels.singular_vertices) {
+        EXPECT_TRUE(boundary.count(v)) << file << ": singular vertex " << v << " inside the disc";
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace planner

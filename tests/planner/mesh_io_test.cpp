@@ -1,0 +1,175 @@
+#include "planner/mesh_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "tests/test_support.hpp"
+
+namespace planner {
+namespace {
+
+// Two triangles sharing an edge, consistently oriented: the should-pass twin.
+const char* kGoodPair =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+    "f 1 2 3\nf 1 3 4\n";
+
+std::vector<std::string> messages(const knitout::DiagnosticSink& sink) {
+  std::vector<std::string> out;
+  for (const auto& d : sink.diagnostics()) out.push_back(knitout::format(d));
+  return out;
+}
+
+struct Checked {
+  bool ok;
+  std::vector<std::string> messages;
+};
+
+Checked check_obj(const std::string& text) {
+  knitout::DiagnosticSink sink;
+  std::istringstream in(text);
+  auto mesh = read_polygon_soup(in, "obj", "m.obj", sink);
+  if (!mesh) return {false, messages(sink)};
+  const bool ok = check_mesh(*mesh, "m.obj", sink);
+  return {ok, messages(sink)};
+}
+
+TEST(MeshIoTest, AcceptsConsistentlyOrientedPair) {
+  const auto result = check_obj(kGoodPair);
+  EXPECT_TRUE(result.ok);
+  EXPECT_TRUE(result.messages.empty());
+}
+
+TEST(MeshIoTest, RejectsInconsistentOrientationNamingBothFaces) {
+  const auto result = check_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 4 3\n");
+  ASSERT_FALSE(result.ok);
+  ASSERT_EQ(result.messages.size(), 1u);
+  EXPECT_EQ(result.messages[0],
+            "m.obj: error: [P012] face 1 and face 2 both run from vertex 3 to vertex 1: their "
+            "orientations disagree; flip one of them so the normals point to the same side");
+}
+
+TEST(MeshIoTest, RejectsNonManifoldEdgeNamingItsFaces) {
+  const auto result =
+      check_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 3 1 5\n");
+  ASSERT_FALSE(result.ok);
+  ASSERT_FALSE(result.messages.empty());
+  EXPECT_EQ(result.messages[0],
+            "m.obj: error: [P011] edge between vertex 1 and vertex 3 is shared by 3 faces (1, 2, "
+            "3); an edge may border at most 2 faces");
+}
+
+TEST(MeshIoTest, RejectsPinchedVertex) {
+  // Two triangles touching at vertex 1 only: a bow tie.
+  const auto result = check_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n");
+  ASSERT_FALSE(result.ok);
+  ASSERT_EQ(result.messages.size(), 1u);
+  EXPECT_EQ(result.messages[0],
+            "m.obj: error: [P013] vertex 1 joins surface sheets that share no edge there (a pinch "
+            "point); split the vertex or connect the sheets");
+}
+
+TEST(MeshIoTest, RejectsSeveralComponents) {
+  const auto result = check_obj(
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 5 0 0\nv 6 0 0\nv 6 1 0\nv 5 1 0\nf 1 2 3\nf 4 5 6\nf 4 6 7\n");
+  ASSERT_FALSE(result.ok);
+  ASSERT_EQ(result.messages.size(), 1u);
+  EXPECT_EQ(result.messages[0],
+            "m.obj: error: [P014] the mesh has 2 separate components: one with face 1 (1 faces); "
+            "one with face 2 (2 faces); cut one garment piece at a time (keep a single component)");
+}
+
+TEST(MeshIoTest, RejectsUnreferencedVertex) {
+  const auto result = check_obj(std::string(kGoodPair) + "v 9 9 9\n");
+  ASSERT_FALSE(result.ok);
+  ASSERT_EQ(result.messages.size(), 1u);
+  EXPECT_EQ(result.messages[0], "m.obj: error: [P015] vertex 5 is used by no face; remove it");
+}
+
+TEST(MeshIoTest, RejectsZeroAreaFace) {
+  const auto result = check_obj("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 1 1 0\nf 1 2 4\nf 2 3 4\nf 1 3 2\n");
+  ASSERT_FALSE(result.ok);
+  ASSERT_FALSE(result.messages.empty());
+  EXPECT_EQ(result.messages[0],
+            "m.obj: error: [P010] face 3 has zero area (its corners coincide or lie on a line)");
+}
+
+TEST(MeshIoTest, RejectsFaceUsingAVertexTwice) {
+  PolygonMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  mesh.faces = {{0, 1, 2, 1}, {0, 2, 3}};
+  knitout::DiagnosticSink sink;
+  EXPECT_FALSE(check_mesh(mesh, "m.obj", sink));
+  ASSERT_FALSE(sink.diagnostics().empty());
+  EXPECT_EQ(knitout::format(sink.diagnostics()[0]),
+            "m.obj: error: [P010] face 1 uses vertex 2 twice; remove the face or the repeated "
+            "corner");
+}
+
+TEST(MeshIoTest, RejectsEmptyMesh) {
+  const auto result = check_obj("v 0 0 0\n");
+  ASSERT_FALSE(result.ok);
+  EXPECT_EQ(result.messages.at(0),
+            "m.obj: error: [P002] the mesh has no faces (1 vertices); a surface is needed");
+}
+
+TEST(MeshIoTest, CapsMessagesPerKind) {
+  std::string text = kGoodPair;
+  for (int i = 0; i < 13; ++i) text += "v 9 9 " + std::to_string(i) + "\n";
+  const auto result = check_obj(text);
+  ASSERT_FALSE(result.ok);
+  ASSERT_EQ(result.messages.size(), 11u);
+  EXPECT_EQ(result.messages.back(),
+            "m.obj: error: [P015] 3 more unreferenced vertices not listed (13 in all)");
+}
+
+TEST(MeshIoTest, ReadsOffAndConvertsUnits) {
+  const auto dir = wearknit::test::make_temp_dir("mesh_io");
+  wearknit::test::write_file(dir / "quad.off", "OFF\n4 1 0\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n4 0 1 2 3\n");
+  knitout::DiagnosticSink sink;
+  auto mesh = load_mesh((dir / "quad.off").string(), {*mm_per_unit("cm"), 2.0}, sink);
+  ASSERT_TRUE(mesh.has_value()) << knitout::format(sink.diagnostics().at(0));
+  ASSERT_EQ(mesh->faces.size(), 1u);
+  EXPECT_EQ(mesh->faces[0].size(), 4u);
+  const Vec3 size = bounding_box_size(*mesh);
+  EXPECT_DOUBLE_EQ(size.x(), 40.0);  // 2 cm * scale 2 = 40 mm
+  EXPECT_DOUBLE_EQ(size.y(), 20.0);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(MeshIoTest, ReportsMissingFileAndUnknownFormat) {
+  knitout::DiagnosticSink sink;
+  EXPECT_FALSE(read_polygon_soup("/nonexistent/garment.obj", sink).has_value());
+  EXPECT_FALSE(read_polygon_soup("garment.xyz", sink).has_value());
+  ASSERT_EQ(sink.diagnostics().size(), 2u);
+  EXPECT_EQ(knitout::format(sink.diagnostics()[0]),
+            "/nonexistent/garment.obj: error: [P001] cannot open file");
+  EXPECT_EQ(knitout::format(sink.diagnostics()[1]),
+            "garment.xyz: error: [P001] cannot read a mesh from a '.xyz' file; use OBJ, OFF, PLY "
+            "or STL (the format is taken from the extension)");
+}
+
+TEST(MeshIoTest, UnitsAreMillimetresCentimetresOrMetres) {
+  EXPECT_EQ(mm_per_unit("mm"), 1.0);
+  EXPECT_EQ(mm_per_unit("cm"), 10.0);
+  EXPECT_EQ(mm_per_unit("m"), 1000.0);
+  EXPECT_FALSE(mm_per_unit("inch").has_value());
+}
+
+TEST(MeshIoTest, WrittenObjReadsBack) {
+  knitout::DiagnosticSink sink;
+  std::istringstream in(kGoodPair);
+  auto mesh = read_polygon_soup(in, "obj", "m.obj", sink);
+  ASSERT_TRUE(mesh);
+  std::ostringstream out;
+  write_obj(out, *mesh, "header");
+  std::istringstream back(out.str());
+  auto again = read_polygon_soup(back, "obj", "again.obj", sink);
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->faces, mesh->faces);
+  EXPECT_EQ(again->positions.size(), mesh->positions.size());
+  EXPECT_EQ(out.str().substr(0, 9), "# header\n");
+}
+
+}  // namespace
+}  // namespace planner
