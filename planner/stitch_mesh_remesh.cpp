@@ -373,14 +373,17 @@ struct Builder {
   }
 
   // Stitch vertices along a run, every ~course_mm; arcs[i] for segment i.
-  std::vector<int> sample(const std::vector<int>& halfedges, std::vector<std::int32_t>* arcs) {
+  int auto_count(double length) const {
+    return std::max(1, static_cast<int>(std::lround(length / params.course_mm)));
+  }
+
+  std::vector<int> sample(const std::vector<int>& halfedges, std::vector<std::int32_t>* arcs, int n) {
     std::vector<double> along{0};
     for (int h : halfedges) {
       along.push_back(along.back() +
                       (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm());
     }
     const double total = along.back();
-    const int n = std::max(1, static_cast<int>(std::lround(total / params.course_mm)));
     std::vector<int> out{stitch_vertex(pieces.from[at(halfedges.front())])};
     std::size_t h = 0;
     for (int i = 1; i <= n; ++i) {
@@ -410,12 +413,18 @@ struct Builder {
     return key(std::min(a, b), std::max(a, b));
   }
 
-  // A level curve is sampled once; the strip on its other side reuses the samples.
-  std::vector<int> level_samples(const Run& run) {
+  // A level curve is sampled once (by the strip below it, with n segments);
+  // the strip above reuses the samples.
+  const std::vector<int>* sampled_curve(const Run& run) const {
+    auto it = curve_of_edge.find(undirected(run.halfedges.front()));
+    return it == curve_of_edge.end() ? nullptr : &curve_samples[at(it->second)];
+  }
+
+  std::vector<int> level_samples(const Run& run, int n) {
     auto it = curve_of_edge.find(undirected(run.halfedges.front()));
     if (it == curve_of_edge.end()) {
       const int id = static_cast<int>(curve_samples.size());
-      curve_samples.push_back(sample(run.halfedges, nullptr));
+      curve_samples.push_back(sample(run.halfedges, nullptr, n));
       curve_first.push_back(pieces.from[at(run.halfedges.front())]);
       for (int h : run.halfedges) curve_of_edge[undirected(h)] = id;
       return curve_samples.back();
@@ -427,17 +436,62 @@ struct Builder {
     return samples;
   }
 
-  // Vertices of a course chain and the arcs of its segments.
-  std::vector<int> chain_vertices(const Chain& chain, std::vector<std::int32_t>& arcs) {
-    std::vector<int> out;
+  // Segments per run of a chain: fixed for level curves sampled already,
+  // else ~length / course_mm.
+  std::vector<int> run_counts(const Chain& chain) const {
+    std::vector<int> counts;
     for (const Run& run : chain.runs) {
+      const std::vector<int>* done = run.level ? sampled_curve(run) : nullptr;
+      counts.push_back(done != nullptr ? static_cast<int>(done->size()) - 1 : auto_count(run.length));
+    }
+    return counts;
+  }
+
+  // Changes the free runs' counts (not fixed ones) so they sum to `total`
+  // where possible, in proportion to their length; each keeps at least one.
+  static void rescale(const Chain& chain, const std::vector<bool>& fixed, std::vector<int>& counts,
+                      int total) {
+    int current = std::accumulate(counts.begin(), counts.end(), 0);
+    for (int guard = 0; current != total && guard < 100000; ++guard) {
+      // Add to the free run with the longest segments, or take from the one
+      // with the shortest.
+      int best = -1;
+      double best_value = 0;
+      for (std::size_t r = 0; r < counts.size(); ++r) {
+        if (fixed[r]) continue;
+        const double per = chain.runs[r].length / counts[r];
+        if (current < total) {
+          if (best < 0 || per > best_value) best = static_cast<int>(r), best_value = per;
+        } else if (counts[r] > 1) {
+          if (best < 0 || per < best_value) best = static_cast<int>(r), best_value = per;
+        }
+      }
+      if (best < 0) return;
+      counts[at(best)] += current < total ? 1 : -1;
+      current += current < total ? 1 : -1;
+    }
+  }
+
+  std::vector<bool> fixed_runs(const Chain& chain) const {
+    std::vector<bool> fixed;
+    for (const Run& run : chain.runs) fixed.push_back(run.level && sampled_curve(run) != nullptr);
+    return fixed;
+  }
+
+  // Vertices of a course chain and the arcs of its segments.
+  std::vector<int> chain_vertices(const Chain& chain, const std::vector<int>& counts,
+                                  std::vector<std::int32_t>& arcs,
+                                  std::vector<bool>* on_level = nullptr) {
+    std::vector<int> out;
+    for (std::size_t r = 0; r < chain.runs.size(); ++r) {
+      const Run& run = chain.runs[r];
       std::vector<std::int32_t> run_arcs;
       std::vector<int> v;
       if (run.level) {
-        v = level_samples(run);
+        v = level_samples(run, counts[r]);
         run_arcs.assign(v.size() - 1, kNoArc);
       } else {
-        v = sample(run.halfedges, &run_arcs);
+        v = sample(run.halfedges, &run_arcs, counts[r]);
       }
       if (!out.empty() && out.back() == v.front()) {
         out.insert(out.end(), v.begin() + 1, v.end());
@@ -448,6 +502,7 @@ struct Builder {
         out = v;
       }
       arcs.insert(arcs.end(), run_arcs.begin(), run_arcs.end());
+      if (on_level != nullptr) on_level->insert(on_level->end(), run_arcs.size(), run.level);
     }
     return out;
   }
@@ -549,6 +604,83 @@ struct Builder {
         }
       }
       merge_same();
+      // A short stretch of boundary facing up or down between chains of the
+      // other kind is a step of a jagged cut, not a row end: a wale side.
+      if (!changed && out.size() > 2) {
+        for (Chain& c : out) {
+          if (c.side == Side::Wale) continue;
+          double length = 0;
+          bool boundary_only = true;
+          for (const Run& r : c.runs) {
+            length += r.length;
+            boundary_only = boundary_only && !r.level;
+          }
+          if (boundary_only && length < params.step_mm_factor * params.wale_mm) {
+            c.side = Side::Wale;
+            changed = true;
+            break;
+          }
+        }
+        merge_same();
+      }
+      // Still more than one chain of a kind: the boundary folds against the
+      // rows. The shortest boundary-only course chain gives way first (it
+      // joins its neighbours' kind, or becomes a side).
+      int lows = 0;
+      for (const Chain& c : out) lows += c.side == Side::Low;
+      if (!changed && lows > 1) {
+        double shortest = std::numeric_limits<double>::infinity();
+        Chain* pick = nullptr;
+        for (Chain& c : out) {
+          if (c.side == Side::Wale) continue;
+          double length = 0;
+          bool boundary_only = true;
+          for (const Run& r : c.runs) {
+            length += r.length;
+            boundary_only = boundary_only && !r.level;
+          }
+          if (boundary_only && length < shortest) {
+            shortest = length;
+            pick = &c;
+          }
+        }
+        if (pick != nullptr) {
+          pick->side = Side::Wale;
+          changed = true;
+        }
+        merge_same();
+      }
+      if (false) {
+        for (Chain& c : out) {
+          if (c.side == Side::Wale) continue;
+          double length = 0;
+          bool boundary_only = true;
+          for (const Run& r : c.runs) {
+            length += r.length;
+            boundary_only = boundary_only && !r.level;
+          }
+          if (boundary_only && length < 0) {
+            c.side = Side::Wale;
+            changed = true;
+            break;
+          }
+        }
+        merge_same();
+      }
+    }
+    // Neighbouring boundary runs of one chain are one stretch of boundary.
+    for (Chain& c : out) {
+      std::vector<Run> joined;
+      for (Run& r : c.runs) {
+        if (!joined.empty() && !joined.back().level && !r.level) {
+          joined.back().halfedges.insert(joined.back().halfedges.end(), r.halfedges.begin(),
+                                         r.halfedges.end());
+          joined.back().length += r.length;
+        } else {
+          joined.push_back(std::move(r));
+        }
+      }
+      c.runs = std::move(joined);
     }
     // Short boundary runs at the ends of a course chain beside a wale side
     // join the wale side: a wale edge, not a sliver course edge.
@@ -650,6 +782,119 @@ struct Builder {
     return steps;
   }
 
+  int first_vertex(const Chain& c) const { return pieces.from[at(c.runs.front().halfedges.front())]; }
+  int last_vertex(const Chain& c) const { return pieces.to(c.runs.back().halfedges.back()); }
+
+  // A strip around a saddle of the row time (two bottom and two top chains,
+  // X-shaped): it is split into two strips by one wale edge between two
+  // opposite corners where a bottom and a top chain meet. A side chain at such
+  // a corner is first joined to the bottom chain (cast-on stitches), so the
+  // corner is a point. Of the two pairs of opposite corners the one with the
+  // shorter edge is used.
+  bool split_saddle(const std::string& where, std::vector<Chain> loop) {
+    while (loop.front().side != Side::Low) std::rotate(loop.begin(), loop.begin() + 1, loop.end());
+    // Positions of the four course chains and the side chains after each.
+    std::vector<std::size_t> course;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      if (loop[i].side != Side::Wale) course.push_back(i);
+    }
+    if (course.size() != 4) return false;
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (loop[course[k]].side != (k % 2 == 0 ? Side::Low : Side::High)) return false;
+      if (loop[course[k]].runs.empty()) return false;
+    }
+    // Side chain after course chain k (or none).
+    auto side_after = [&](std::size_t k) -> Chain* {
+      const std::size_t i = (course[k] + 1) % loop.size();
+      return loop[i].side == Side::Wale ? &loop[i] : nullptr;
+    };
+    // Corner after course chain k, as it would be once its side chain joins
+    // the bottom chain: the bottom chain's end (k even) or start (k odd).
+    auto corner = [&](std::size_t k) {
+      if (k % 2 == 0) {
+        const Chain* s = side_after(k);
+        return s != nullptr && !s->runs.empty() ? last_vertex(*s) : last_vertex(loop[course[k]]);
+      }
+      return first_vertex(loop[course[(k + 1) % 4]]);
+    };
+    // Corners after H chains (1, 3) as they are: joining a side chain to the
+    // following bottom chain moves the corner to the side chain's start.
+    auto corner_after_high = [&](std::size_t k) {
+      const Chain* s = side_after(k);
+      return s != nullptr && !s->runs.empty() ? first_vertex(*s)
+                                              : first_vertex(loop[course[(k + 1) % 4]]);
+    };
+    const double d_low = (pieces.position[at(corner(0))] - pieces.position[at(corner(2))]).norm();
+    const double d_high =
+        (pieces.position[at(corner_after_high(1))] - pieces.position[at(corner_after_high(3))]).norm();
+    // Join the side chains at the chosen corners to their bottom chains.
+    const bool at_low = d_low <= d_high;  // corners after L chains 0 and 2
+    std::vector<Chain> chains_in_order;   // L0 s0 H1 s1 L2 s2 H3 s3, sides possibly absent
+    std::vector<Chain> sides(4);
+    std::vector<bool> has_side(4, false);
+    std::vector<Chain> courses(4);
+    for (std::size_t k = 0; k < 4; ++k) {
+      courses[k] = loop[course[k]];
+      if (Chain* s = side_after(k)) {
+        sides[k] = *s;
+        has_side[k] = !s->runs.empty();
+      }
+    }
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (!has_side[k]) continue;
+      if (at_low && k % 2 == 0) {
+        for (Run& r : sides[k].runs) courses[k].runs.push_back(r);  // end of L
+        has_side[k] = false;
+      } else if (!at_low && k % 2 == 1) {
+        Chain& next = courses[(k + 1) % 4];  // start of the next L
+        next.runs.insert(next.runs.begin(), sides[k].runs.begin(), sides[k].runs.end());
+        has_side[k] = false;
+      }
+    }
+    for (Chain& c : courses) {
+      std::vector<Run> joined;
+      for (Run& r : c.runs) {
+        if (!joined.empty() && !joined.back().level && !r.level) {
+          joined.back().halfedges.insert(joined.back().halfedges.end(), r.halfedges.begin(),
+                                         r.halfedges.end());
+          joined.back().length += r.length;
+        } else {
+          joined.push_back(std::move(r));
+        }
+      }
+      c.runs = std::move(joined);
+    }
+    Chain edge;  // the splitting wale edge: no boundary runs
+    edge.side = Side::Wale;
+    auto with_side = [&](std::vector<Chain>& out, std::size_t k) {
+      out.push_back(courses[k]);
+      if (has_side[k]) out.push_back(sides[k]);
+    };
+    std::vector<Chain> first;
+    std::vector<Chain> second;
+    if (at_low) {
+      // Strips L0 + H3 (meeting after H3) and L2 + H1 (meeting after H1).
+      with_side(first, 0);
+      first.push_back(edge);
+      with_side(first, 3);
+      with_side(second, 2);
+      second.push_back(edge);
+      with_side(second, 1);
+    } else {
+      // Strips L0 + H1 (meeting after L0) and L2 + H3 (meeting after L2).
+      with_side(first, 0);
+      with_side(first, 1);
+      first.push_back(edge);
+      with_side(second, 2);
+      with_side(second, 3);
+      second.push_back(edge);
+    }
+    ++stats.saddles_split;
+    strip(where + " (saddle, first half)", std::move(first));
+    strip(where + " (saddle, second half)", std::move(second));
+    return true;
+  }
+
   void strip(const std::string& where, std::vector<Chain> loop) {
     // Bring the loop to the form Low [Wale] High [Wale].
     int lows = 0;
@@ -669,8 +914,16 @@ struct Builder {
         lows = highs = 1;
       }
     }
+    if (lows == 2 && highs == 2 && split_saddle(where, loop)) return;
     if (lows != 1 || highs != 1) {
-      problems.push_back(where + ": " + std::to_string(lows) + " bottom and " +
+      std::string pattern;
+      for (const Chain& c : loop) {
+        double len = 0;
+        for (const Run& r : c.runs) len += r.length;
+        pattern += std::string(" ") + (c.side == Side::Low ? "L" : c.side == Side::High ? "H" : "S") +
+                   std::to_string(static_cast<int>(len * 10) / 10.0).substr(0, 4);
+      }
+      problems.push_back(where + pattern + ": " + std::to_string(lows) + " bottom and " +
                          std::to_string(highs) +
                          " top chains (expected one each); the row time folds here");
       return;
@@ -688,10 +941,43 @@ struct Builder {
         left_wale = &loop[i];
       }
     }
+    // Segment counts: the zip needs, after the end triangles of shared ends,
+    // either nothing left or one chain at most twice the other (§6.3).
+    const int shared = (left_wale == nullptr ? 1 : 0) + (right_wale == nullptr ? 1 : 0);
+    std::vector<int> low_counts = run_counts(loop.front());
+    std::vector<int> high_counts = run_counts(*high);
+    const std::vector<bool> low_fixed = fixed_runs(loop.front());
+    const std::vector<bool> high_fixed = fixed_runs(*high);
+    const int high_min = static_cast<int>(high->runs.size());
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const int a = std::accumulate(low_counts.begin(), low_counts.end(), 0);
+      const int b = std::accumulate(high_counts.begin(), high_counts.end(), 0);
+      if (shared == 2 && a == 1 && b == 1) break;  // a lens
+      const int na = a - shared;
+      int lo = 0;
+      int hi = 0;
+      if (shared == 2 && a == 1) {
+        lo = hi = 1;  // a lens: the edges below and above are glued
+      } else if (na <= 0) {
+        lo = hi = shared;  // only end triangles
+      } else {
+        lo = (na + 1) / 2 + shared;
+        hi = 2 * na + shared;
+      }
+      lo = std::max(lo, high_min);
+      if (lo <= hi) {
+        rescale(*high, high_fixed, high_counts, std::clamp(b, lo, hi));
+        break;
+      }
+      // The top chain cannot shrink enough: lengthen the bottom one.
+      rescale(loop.front(), low_fixed, low_counts,
+              std::max(1, shared + (std::max(0, high_min - shared) + 1) / 2));
+    }
     std::vector<std::int32_t> low_arcs;
     std::vector<std::int32_t> high_arcs;
-    const std::vector<int> l = chain_vertices(loop.front(), low_arcs);
-    std::vector<int> h = chain_vertices(*high, high_arcs);
+    const std::vector<int> l = chain_vertices(loop.front(), low_counts, low_arcs);
+    std::vector<bool> high_on_level;
+    std::vector<int> h = chain_vertices(*high, high_counts, high_arcs, &high_on_level);
     const int a = static_cast<int>(l.size()) - 1;
     const int b = static_cast<int>(h.size()) - 1;
     // Top chain left to right: t[j] = h[b - j]; top segment j is high segment b - 1 - j.
@@ -701,6 +987,16 @@ struct Builder {
     const bool right_shared = right_wale == nullptr;
     if (left_shared != (t.front() == l.front()) || right_shared != (t.back() == l.back())) {
       throw std::logic_error("stitch meshing: chain ends disagree with the strip's sides");
+    }
+    if (left_shared && right_shared && a == 1 && b == 2 &&
+        high_on_level[0] != high_on_level[1]) {
+      // One fixed bottom side, a top of a level piece and a boundary piece:
+      // the boundary piece is the wale side of a short-row triangle.
+      const EdgeRole first = high_on_level[0] ? EdgeRole::CourseOut : EdgeRole::Wale;
+      const EdgeRole second = high_on_level[1] ? EdgeRole::CourseOut : EdgeRole::Wale;
+      add_face({l[0], l[1], t[1]}, {EdgeRole::CourseIn, first, second},
+               {low_arcs[0], top_arc(1), top_arc(0)});
+      return;
     }
     if (left_shared && right_shared && a == 1 && b == 1) {
       ++stats.lenses_skipped;  // one edge below, one above, same ends: they are glued
@@ -922,6 +1218,7 @@ RemeshResult remesh_anisotropic(const LabelledDisc& disc, const RemeshParams& pa
   result.stats.rows = bands;
   result.stats.strips = builder.stats.strips;
   result.stats.lenses_skipped = builder.stats.lenses_skipped;
+  result.stats.saddles_split = builder.stats.saddles_split;
   result.stats.invalid_faces = builder.stats.invalid_faces;
   result.mesh = std::move(builder.mesh);
   result.problems = std::move(builder.problems);

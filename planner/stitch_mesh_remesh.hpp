@@ -56,12 +56,16 @@ struct RemeshParams {
   // A boundary side whose outward normal makes |cos| below this with the row
   // direction runs along the wale: it becomes a wale side, not a course chain.
   double side_cosine = 0.3;
+  // Boundary-only course chains shorter than this times wale_mm, lying
+  // between chains of the other kind, are steps of a jagged cut: wale sides.
+  double step_mm_factor = 1.5;
 };
 
 struct RemeshStats {
   int rows = 0;             // K
   int strips = 0;           // band components
   int lenses_skipped = 0;   // strips of one side on each chain (nothing between them)
+  int saddles_split = 0;    // X-shaped strips around a saddle of the row time, split in two
   int invalid_faces = 0;    // faces the zip could not make valid (see problems)
   double solve_seconds = 0;
   double total_seconds = 0;

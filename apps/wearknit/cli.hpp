@@ -57,5 +57,6 @@ void print_diagnostics(Context& context, const std::vector<knitout::Diagnostic>&
 int run_fmt(const std::vector<std::string>& args, Context& context);
 int run_demo(const std::vector<std::string>& args, Context& context);
 int run_cut(const std::vector<std::string>& args, Context& context);
+int run_stitch_mesh(const std::vector<std::string>& args, Context& context);
 
 }  // namespace wearknit::cli
