@@ -747,7 +747,7 @@ struct Builder {
       return d * d;
     };
     const std::array<std::pair<int, int>, 3> moves{{{1, 1}, {2, 1}, {1, 2}}};
-    const double pentagon = 0.05;  // prefer knit stitches where rows keep their length
+    const double pentagon = params.pentagon_cost;  // prefer knit stitches where rows keep their length
     cost[0] = wale_cost(0, 0);
     for (int i = 0; i <= na; ++i) {
       for (int j = 0; j <= nb; ++j) {
@@ -911,6 +911,23 @@ struct Builder {
         for (Chain& c : loop) {
           if (c.side == Side::Wale) c.side = missing;
         }
+        lows = highs = 1;
+      }
+    }
+    if (loop.size() == 1 && loop.front().side != Side::Wale && loop.front().runs.size() > 1) {
+      // One course chain all round: a level curve closed by boundary that
+      // faces the same way. The boundary is the other chain.
+      Chain& only = loop.front();
+      const Side other = only.side == Side::Low ? Side::High : Side::Low;
+      while (!only.runs.front().level) std::rotate(only.runs.begin(), only.runs.begin() + 1, only.runs.end());
+      Chain rest;
+      rest.side = other;
+      while (only.runs.size() > 1 && !only.runs.back().level) {
+        rest.runs.insert(rest.runs.begin(), std::move(only.runs.back()));
+        only.runs.pop_back();
+      }
+      if (!rest.runs.empty() && only.runs.size() == 1) {
+        loop.push_back(std::move(rest));
         lows = highs = 1;
       }
     }

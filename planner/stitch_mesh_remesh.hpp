@@ -59,6 +59,9 @@ struct RemeshParams {
   // Boundary-only course chains shorter than this times wale_mm, lying
   // between chains of the other kind, are steps of a jagged cut: wale sides.
   double step_mm_factor = 1.5;
+  // Cost of an increase or decrease in the zip, against the squared relative
+  // error of a wale side's length: higher keeps more knit stitches.
+  double pentagon_cost = 0.05;
 };
 
 struct RemeshStats {

@@ -44,6 +44,8 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
       "fits of the row time towards unit row height after the fit to the labels")(
       "label-weight", po::value<double>(&params.label_weight)->default_value(0.1),
       "weight of the labelled wale direction in each straightening fit")(
+      "pentagon-cost", po::value<double>(&params.pentagon_cost)->default_value(0.05),
+      "cost of an increase or decrease against a wale side's squared relative length error")(
       "no-picture", "do not draw stitch-mesh.png")(
       "format", po::value<std::string>(&format_name)->default_value("text"),
       "diagnostics as text (stderr) or json (stdout)")("json", "same as --format json")(
