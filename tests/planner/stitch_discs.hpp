@@ -5,7 +5,12 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <algorithm>
 #include <functional>
+#include <map>
+#include <set>
+#include <utility>
+#include <vector>
 
 #include "planner/stitch_mesh_remesh.hpp"
 
@@ -80,6 +85,41 @@ inline LabelledDisc hemisphere(double radius_mm, double beta0 = 0.25, int n = 40
 }
 inline double hemisphere_area(double radius_mm, double beta0 = 0.25) {
   return radius_mm * radius_mm * kPi * 2 * std::cos(beta0);
+}
+
+// Largest distance from a boundary vertex of the stitch mesh to the disc's
+// boundary polyline (0 when the stitch mesh keeps the disc's boundary).
+inline double farthest_boundary_vertex(const LabelledDisc& disc, const StitchMesh& mesh) {
+  std::set<std::pair<int, int>> directed;
+  for (const auto& face : disc.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i) directed.insert({face[i], face[(i + 1) % face.size()]});
+  }
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+  for (const auto& [a, b] : directed) {
+    if (directed.count({b, a}) == 0) {
+      segments.push_back({disc.positions[static_cast<std::size_t>(a)],
+                          disc.positions[static_cast<std::size_t>(b)]});
+    }
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;
+  for (const StitchFace& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      ++sides[{face.vertices[i], face.vertices[(i + 1) % face.vertices.size()]}];
+    }
+  }
+  double worst = 0;
+  for (const auto& [e, count] : sides) {
+    if (sides.count({e.second, e.first}) != 0) continue;
+    const Eigen::Vector3d p = mesh.positions[e.first];
+    double best = 1e300;
+    for (const auto& [pa, pb] : segments) {
+      const double len2 = (pb - pa).squaredNorm();
+      const double s = len2 > 0 ? std::clamp((p - pa).dot(pb - pa) / len2, 0.0, 1.0) : 0.0;
+      best = std::min(best, (pa + s * (pb - pa) - p).squaredNorm());
+    }
+    worst = std::max(worst, std::sqrt(best));
+  }
+  return worst;
 }
 
 }  // namespace planner::stitch_discs

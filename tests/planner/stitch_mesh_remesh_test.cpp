@@ -3,8 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <map>
-#include <set>
 #include <string>
 
 #include "planner/stitch_mesh.hpp"
@@ -14,24 +12,6 @@ namespace planner {
 namespace {
 
 namespace sd = stitch_discs;
-
-// Distance from p to the disc's boundary polyline.
-double distance_to_boundary(const LabelledDisc& disc, const Eigen::Vector3d& p) {
-  std::set<std::pair<int, int>> directed;
-  for (const auto& face : disc.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i) directed.insert({face[i], face[(i + 1) % face.size()]});
-  }
-  double best = 1e300;
-  for (const auto& [a, b] : directed) {
-    if (directed.count({b, a}) != 0) continue;
-    const Eigen::Vector3d pa = disc.positions[static_cast<std::size_t>(a)];
-    const Eigen::Vector3d pb = disc.positions[static_cast<std::size_t>(b)];
-    const double len2 = (pb - pa).squaredNorm();
-    const double s = len2 > 0 ? std::clamp((p - pa).dot(pb - pa) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (pa + s * (pb - pa) - p).norm());
-  }
-  return best;
-}
 
 // Everything issue 8 asks of a stitch mesh made from a disc of known area.
 void expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2, const RemeshParams& params,
@@ -47,18 +27,7 @@ void expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2, const Re
   EXPECT_EQ(f.euler_characteristic, 1);
   // With the input's boundary: every boundary vertex lies on it, and the
   // boundary is as long (chords of the side runs are a little shorter).
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
-  for (const StitchFace& face : mesh.faces) {
-    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
-      ++directed[{face.vertices[i], face.vertices[(i + 1) % face.vertices.size()]}];
-    }
-  }
-  double worst = 0;
-  for (const auto& [e, count] : directed) {
-    if (directed.count({e.second, e.first}) != 0) continue;
-    worst = std::max(worst, distance_to_boundary(disc, mesh.positions[e.first]));
-  }
-  EXPECT_LT(worst, 1e-6 * (1 + std::sqrt(area_mm2)));
+  EXPECT_LT(sd::farthest_boundary_vertex(disc, mesh), 1e-6 * (1 + std::sqrt(area_mm2)));
   const double input_boundary = disc_boundary_length_mm(disc);
   EXPECT_NEAR(f.boundary_length_mm / input_boundary, 1.0, 0.05);
   // Sizes: mean lengths within 5%, 90% of edges within 15%.
