@@ -31,6 +31,7 @@ struct StitchMeshReport {
   StitchGauge gauge;
   StitchMeshFigures figures;
   RemeshStats stats;
+  StabilityCounts stability;
   double disc_area_mm2 = 0;
   double seconds = 0;  // the whole stage: read, mesh, write
 };

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 namespace planner {
@@ -356,6 +357,8 @@ struct Builder {
   std::vector<int> curve_first;
   std::vector<std::string> problems;
   RemeshStats stats;
+  // Bottom sides (as the row above walks them) of increases and decreases.
+  std::unordered_set<std::uint64_t> shaped_below;
 
   int stitch_vertex(int piece_vertex) {
     auto [it, inserted] = anchor.emplace(piece_vertex, 0);
@@ -516,6 +519,16 @@ struct Builder {
     const std::optional<FaceType> type = classify_roles(face.roles);
     if (!type) ++stats.invalid_faces;
     face.type = type.value_or(FaceType::Knit);
+    if (face.type == FaceType::Increase || face.type == FaceType::Decrease) {
+      // Remember the pentagon's top sides, as the row above walks them.
+      const std::size_t n = face.vertices.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (face.roles[i] == EdgeRole::CourseOut) {
+          shaped_below.insert(key(static_cast<int>(face.vertices[(i + 1) % n]),
+                                  static_cast<int>(face.vertices[i])));
+        }
+      }
+    }
     mesh.faces.push_back(std::move(face));
   }
 
@@ -724,7 +737,8 @@ struct Builder {
   // (1, 2) when the chains allow it (neither more than twice the other);
   // otherwise the counts are spread evenly and the faces come out invalid.
   std::vector<std::pair<int, int>> zip_steps(const std::vector<int>& l, const std::vector<int>& t,
-                                             int i0, int j0, int i1, int j1) const {
+                                             int i0, int j0, int i1, int j1, bool left_boundary,
+                                             bool right_boundary) const {
     const int na = i1 - i0;
     const int nb = j1 - j0;
     std::vector<std::pair<int, int>> steps;
@@ -739,44 +753,73 @@ struct Builder {
     }
     const double inf = std::numeric_limits<double>::infinity();
     const int width = nb + 1;
-    std::vector<double> cost(at((na + 1) * width), inf);
-    std::vector<std::int8_t> came(at((na + 1) * width), -1);
+    // State: wale side (i, j) reached by move m (0 knit, 1 decrease, 2 increase).
+    auto index = [&](int i, int j, int m) { return at(((i * width) + j) * 3 + m); };
+    std::vector<double> cost(at((na + 1) * width * 3), inf);
+    std::vector<std::int8_t> came(at((na + 1) * width * 3), -1);
     auto wale_cost = [&](int i, int j) {
       const double len = (mesh.positions[at(l[at(i0 + i)])] - mesh.positions[at(t[at(j0 + j)])]).norm();
       const double d = (len - params.wale_mm) / params.wale_mm;
       return d * d;
     };
+    // Fig. 7 rules of thumb as costs (docs/stitch-mesh.md): no increase or
+    // decrease at a row's end on the boundary, none on a bottom side made by
+    // an increase or decrease of the row below, and no increase beside a
+    // decrease.
+    auto shaped = [&](int i, int count) {
+      for (int k = 0; k < count; ++k) {
+        if (shaped_below.count(key(l[at(i0 + i + k)], l[at(i0 + i + k + 1)])) != 0) return true;
+      }
+      return false;
+    };
     const std::array<std::pair<int, int>, 3> moves{{{1, 1}, {2, 1}, {1, 2}}};
     const double pentagon = params.pentagon_cost;  // prefer knit stitches where rows keep their length
-    cost[0] = wale_cost(0, 0);
+    const double rule = params.stability_cost;
+    cost[index(0, 0, 0)] = wale_cost(0, 0);
     for (int i = 0; i <= na; ++i) {
       for (int j = 0; j <= nb; ++j) {
-        const double here = cost[at(i * width + j)];
-        if (here == inf) continue;
-        for (std::size_t m = 0; m < moves.size(); ++m) {
-          const int ni = i + moves[m].first;
-          const int nj = j + moves[m].second;
-          if (ni > na || nj > nb) continue;
-          // Stay where the end can still be reached.
-          const int ra = na - ni;
-          const int rb = nb - nj;
-          if (ra > 2 * rb || rb > 2 * ra) continue;
-          const double c = here + wale_cost(ni, nj) + (m == 0 ? 0.0 : pentagon);
-          if (c < cost[at(ni * width + nj)]) {
-            cost[at(ni * width + nj)] = c;
-            came[at(ni * width + nj)] = static_cast<std::int8_t>(m);
+        for (int last = 0; last < 3; ++last) {
+          const double here = cost[index(i, j, last)];
+          if (here == inf) continue;
+          for (std::size_t m = 0; m < moves.size(); ++m) {
+            const int ni = i + moves[m].first;
+            const int nj = j + moves[m].second;
+            if (ni > na || nj > nb) continue;
+            // Stay where the end can still be reached.
+            const int ra = na - ni;
+            const int rb = nb - nj;
+            if (ra > 2 * rb || rb > 2 * ra) continue;
+            double c = here + wale_cost(ni, nj);
+            if (m != 0) {
+              c += pentagon;
+              if ((i == 0 && j == 0 && left_boundary) || (ni == na && nj == nb && right_boundary)) {
+                c += rule;  // rule 1: shaping at the edge of the fabric
+              }
+              if (shaped(i, moves[m].first)) c += rule;  // rule 2: stacked shaping
+              if (last != 0 && last != static_cast<int>(m)) c += rule;  // rule 3: increase by decrease
+            }
+            if (c < cost[index(ni, nj, static_cast<int>(m))]) {
+              cost[index(ni, nj, static_cast<int>(m))] = c;
+              came[index(ni, nj, static_cast<int>(m))] = static_cast<std::int8_t>(last);
+            }
           }
         }
       }
     }
-    if (cost[at(na * width + nb)] == inf) {
+    int best = 0;
+    for (int m = 1; m < 3; ++m) {
+      if (cost[index(na, nb, m)] < cost[index(na, nb, best)]) best = m;
+    }
+    if (cost[index(na, nb, best)] == inf) {
       throw std::logic_error("stitch meshing: zip found no path although the chains allow one");
     }
-    for (int i = na, j = nb; i > 0 || j > 0;) {
-      const auto move = moves[at(came[at(i * width + j)])];
+    for (int i = na, j = nb, m = best; i > 0 || j > 0;) {
+      const auto move = moves[at(m)];
+      const int previous = came[index(i, j, m)];
       steps.push_back(move);
       i -= move.first;
       j -= move.second;
+      m = previous;
     }
     std::reverse(steps.begin(), steps.end());
     return steps;
@@ -1079,7 +1122,9 @@ struct Builder {
     // Zip (§6.3): faces with one or two sides on each chain (knit, decrease,
     // increase), chosen by dynamic programming so wale sides are as close to
     // wale_mm as possible and pentagons are used only where rows change length.
-    const std::vector<std::pair<int, int>> steps = zip_steps(l, t, i0, j0, i1, j1);
+    const std::vector<std::pair<int, int>> steps =
+        zip_steps(l, t, i0, j0, i1, j1, left_wale != nullptr && !left_wale->runs.empty(),
+                  right_wale != nullptr && !right_wale->runs.empty());
     int i = i0;
     int j = j0;
     for (std::size_t f = 0; f < steps.size(); ++f) {
@@ -1213,7 +1258,7 @@ RemeshResult remesh_anisotropic(const LabelledDisc& disc, const RemeshParams& pa
     if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
     loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
   }
-  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}};
+  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}};
   builder.mesh.course_mm = params.course_mm;
   builder.mesh.wale_mm = params.wale_mm;
   // Strips in row order, so level curves are sampled from below first.
@@ -1331,6 +1376,45 @@ StitchMeshFigures measure(const StitchMesh& mesh) {
   const int used_vertices = static_cast<int>(std::count(used.begin(), used.end(), true));
   out.euler_characteristic = used_vertices - static_cast<int>(edges.size()) + out.faces;
   return out;
+}
+
+StabilityCounts count_stability_rules(const StitchMesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::size_t, std::size_t>> sides;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const StitchFace& face = mesh.faces[f];
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      sides[{face.vertices[i], face.vertices[(i + 1) % face.vertices.size()]}] = {f, i};
+    }
+  }
+  auto pentagon = [](FaceType t) { return t == FaceType::Increase || t == FaceType::Decrease; };
+  StabilityCounts counts;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const StitchFace& face = mesh.faces[f];
+    const std::size_t n = face.vertices.size();
+    bool edge = false;
+    bool stacked = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      auto twin = sides.find({face.vertices[(i + 1) % n], face.vertices[i]});
+      const StitchFace* other = twin == sides.end() ? nullptr : &mesh.faces[twin->second.first];
+      if (pentagon(face.type)) {
+        if (face.roles[i] == EdgeRole::Wale && other == nullptr) edge = true;
+        if (face.roles[i] == EdgeRole::CourseIn && other != nullptr && pentagon(other->type)) {
+          stacked = true;
+        }
+        if (face.roles[i] == EdgeRole::Wale && other != nullptr && pentagon(other->type) &&
+            other->type != face.type && f < twin->second.first) {
+          ++counts.opposed_shaping;
+        }
+      }
+      if (face.type == FaceType::ShortRow && face.roles[i] == EdgeRole::Wale && other != nullptr &&
+          other->type == FaceType::ShortRow && f < twin->second.first) {
+        ++counts.one_stitch_rows;
+      }
+    }
+    counts.edge_shaping += edge;
+    counts.stacked_shaping += stacked;
+  }
+  return counts;
 }
 
 double disc_area_mm2(const LabelledDisc& disc) {

@@ -62,6 +62,10 @@ struct RemeshParams {
   // Cost of an increase or decrease in the zip, against the squared relative
   // error of a wale side's length: higher keeps more knit stitches.
   double pentagon_cost = 0.05;
+  // Cost of breaking one of the Fig. 7 rules of thumb in the zip
+  // (docs/stitch-mesh.md): shaping at the fabric's edge, shaping on shaping,
+  // an increase beside a decrease.
+  double stability_cost = 0.5;
 };
 
 struct RemeshStats {
@@ -109,6 +113,16 @@ struct StitchMeshFigures {
   EdgeLengthStats wale;
 };
 StitchMeshFigures measure(const StitchMesh& mesh);
+
+// §6.3, Fig. 7: configurations that knit unreliably, counted in a finished
+// stitch mesh (docs/stitch-mesh.md has a picture of each).
+struct StabilityCounts {
+  int edge_shaping = 0;      // 1: increase/decrease with a wale side on the boundary
+  int stacked_shaping = 0;   // 2: increase/decrease on a course side of one below
+  int opposed_shaping = 0;   // 3: increase and decrease sharing a wale side
+  int one_stitch_rows = 0;   // 4: two short-row triangles sharing their wale side
+};
+StabilityCounts count_stability_rules(const StitchMesh& mesh);
 
 // Area and boundary length of the disc (for the expected stitch count).
 double disc_area_mm2(const LabelledDisc& disc);

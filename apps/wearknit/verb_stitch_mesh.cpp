@@ -46,6 +46,8 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
       "weight of the labelled wale direction in each straightening fit")(
       "pentagon-cost", po::value<double>(&params.pentagon_cost)->default_value(0.05),
       "cost of an increase or decrease against a wale side's squared relative length error")(
+      "stability-cost", po::value<double>(&params.stability_cost)->default_value(0.5),
+      "cost of breaking a Fig. 7 rule of thumb (docs/stitch-mesh.md); 0 ignores them")(
       "no-picture", "do not draw stitch-mesh.png")(
       "format", po::value<std::string>(&format_name)->default_value("text"),
       "diagnostics as text (stderr) or json (stdout)")("json", "same as --format json")(
@@ -74,8 +76,9 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
     problem = planner::parse_swatch(swatch, gauge);
   }
   if (problem.empty()) problem = planner::check_gauge(gauge);
-  if (problem.empty() && (params.straighten_iterations < 0 || !(params.label_weight >= 0))) {
-    problem = "--straighten and --label-weight must not be negative";
+  if (problem.empty() && (params.straighten_iterations < 0 || !(params.label_weight >= 0) ||
+                          !(params.pentagon_cost >= 0) || !(params.stability_cost >= 0))) {
+    problem = "--straighten, --label-weight, --pentagon-cost and --stability-cost must not be negative";
   }
   if (!problem.empty()) {
     context.err << "wearknit stitch-mesh: " << problem << "\n";
@@ -136,6 +139,7 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
   report.gauge = gauge;
   report.figures = planner::measure(result.mesh);
   report.stats = result.stats;
+  report.stability = planner::count_stability_rules(result.mesh);
   report.disc_area_mm2 = planner::disc_area_mm2(disc);
   report.seconds = seconds_since(start);
   if (failure.empty()) failure = planner::merge_stitch_report(dir, report);
