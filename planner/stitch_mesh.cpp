@@ -122,9 +122,9 @@ std::vector<std::string> check(const StitchMesh& mesh) {
       auto [it, inserted] = sides.emplace(key, std::make_pair(f, i));
       if (!inserted) {
         say(where + " side " + std::to_string(i) + ": runs from vertex " +
-            std::to_string(key.first) + " to " + std::to_string(key.second) +
-            " like face " + std::to_string(it->second.first) + " side " +
-            std::to_string(it->second.second) + " (not one oriented surface)");
+            std::to_string(key.first) + " to " + std::to_string(key.second) + " like face " +
+            std::to_string(it->second.first) + " side " + std::to_string(it->second.second) +
+            " (not one oriented surface)");
       }
     }
   }
@@ -179,8 +179,8 @@ void write_smobj(std::ostream& out, const StitchMesh& mesh) {
     const StitchFace& face = mesh.faces[f];
     std::size_t start = 0;
     classify_roles(face.roles, &start);
-    const std::string entry = std::string(face_type_name(face.type)) + " " +
-                              library_edges(rotated(face.roles, start));
+    const std::string entry =
+        std::string(face_type_name(face.type)) + " " + library_edges(rotated(face.roles, start));
     auto [it, inserted] = library.emplace(entry, library_lines.size() + 1);
     if (inserted) library_lines.push_back(entry);
     face_library[f] = it->second;
@@ -375,9 +375,8 @@ std::optional<StitchMesh> read_smobj(std::istream& in, const std::string& source
     const LibraryEntry& entry = library[types[f] - 1];
     if (entry.roles.size() != face.vertices.size()) {
       number = face_lines[f];
-      bad("P083", "face " + std::to_string(f + 1) + " has " +
-                      std::to_string(face.vertices.size()) + " corners but its type has " +
-                      std::to_string(entry.roles.size()) + " edges");
+      bad("P083", "face " + std::to_string(f + 1) + " has " + std::to_string(face.vertices.size()) +
+                      " corners but its type has " + std::to_string(entry.roles.size()) + " edges");
       continue;
     }
     face.type = entry.type;

@@ -46,7 +46,8 @@ std::string parse_swatch(std::string_view text, StitchGauge& gauge) {
 std::string parse_stitch_mm(std::string_view text, StitchGauge& gauge) {
   auto size = pair(text);
   if (!size) {
-    return "`" + std::string(text) + "` is not COURSExWALE in mm with positive numbers (e.g. 1.05x2.875)";
+    return "`" + std::string(text) +
+           "` is not COURSExWALE in mm with positive numbers (e.g. 1.05x2.875)";
   }
   gauge.course_mm = size->first;
   gauge.wale_mm = size->second;

@@ -11,8 +11,8 @@ namespace planner {
 struct StitchGauge {
   double needles_per_inch = 15.0;  // machine gauge (the SWG091N2 is 15 gauge)
   // §8.1: a 40 x 40 seed-stitch swatch measured 4.2 cm x 11.5 cm.
-  double course_mm = 42.0 / 40.0;  // loop width: swatch width / stitches
-  double wale_mm = 115.0 / 40.0;   // row height: swatch height / rows
+  double course_mm = 42.0 / 40.0;              // loop width: swatch width / stitches
+  double wale_mm = 115.0 / 40.0;               // row height: swatch height / rows
   std::string source = "swatch 40x40:42x115";  // how the size was found, for reports
 };
 

@@ -3,13 +3,13 @@
 #include <cairo.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
 #include <array>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -41,7 +41,8 @@ LabelledDisc labelled_disc(const CutMesh& cut) {
   // Boundary sides of the disc: directed sides with no reverse.
   std::map<std::pair<int, int>, int> directed;
   for (const std::vector<int>& face : disc.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i) ++directed[{face[i], face[(i + 1) % face.size()]}];
+    for (std::size_t i = 0; i < face.size(); ++i)
+      ++directed[{face[i], face[(i + 1) % face.size()]}];
   }
   for (std::size_t f = 0; f < disc.faces.size(); ++f) {
     const std::vector<int>& face = disc.faces[f];
@@ -226,9 +227,8 @@ std::string draw_stitch_mesh(const StitchMesh& mesh, const std::string& png_path
 namespace {
 
 nlohmann::json lengths_json(const EdgeLengthStats& s, double target) {
-  return {{"count", s.count},           {"target_mm", target},
-          {"mean_mm", s.mean_mm},       {"min_mm", s.min_mm},
-          {"max_mm", s.max_mm},         {"within_15_percent", s.within_15_percent}};
+  return {{"count", s.count},   {"target_mm", target}, {"mean_mm", s.mean_mm},
+          {"min_mm", s.min_mm}, {"max_mm", s.max_mm},  {"within_15_percent", s.within_15_percent}};
 }
 
 }  // namespace

@@ -63,8 +63,7 @@ std::vector<Triangle> triangulate(const LabelledDisc& disc) {
     Vec3 course = Vec3::Zero();
     Vec3 wale = Vec3::Zero();
     for (std::size_t i = 0; i < face.size(); ++i) {
-      const Vec3 e =
-          disc.positions[at(face[(i + 1) % face.size()])] - disc.positions[at(face[i])];
+      const Vec3 e = disc.positions[at(face[(i + 1) % face.size()])] - disc.positions[at(face[i])];
       const double len = e.norm();
       if (len <= 0) continue;
       const Vec3 u = e / len;
@@ -118,7 +117,8 @@ std::vector<Triangle> triangulate(const LabelledDisc& disc) {
 std::array<Vec3, 3> hat_gradients(const LabelledDisc& disc, const Triangle& t) {
   std::array<Vec3, 3> g;
   for (int i = 0; i < 3; ++i) {
-    const Vec3 e = disc.positions[at(t.v[at((i + 2) % 3)])] - disc.positions[at(t.v[at((i + 1) % 3)])];
+    const Vec3 e =
+        disc.positions[at(t.v[at((i + 2) % 3)])] - disc.positions[at(t.v[at((i + 1) % 3)])];
     g[at(i)] = t.area > 0 ? Vec3(t.normal.cross(e) / (2 * t.area)) : Vec3::Zero();
   }
   return g;
@@ -181,16 +181,16 @@ Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
 // Step 2: pieces of triangles between consecutive levels.
 
 struct Pieces {
-  std::vector<Vec3> position;        // piece vertices: input vertices, then level crossings
-  std::vector<int> start{0};         // piece p: half-edges start[p] .. start[p+1]-1
-  std::vector<int> band;             // per piece
-  std::vector<int> tri;              // per piece
-  std::vector<int> from;             // per half-edge
-  std::vector<int> level;            // per half-edge: level index of an isoline side, else -1
-  std::vector<int> source_face;      // per half-edge on the disc boundary: input face, else -1
-  std::vector<int> source_side;      // ... and its side
-  std::vector<int> twin;             // per half-edge, -1 if none
-  std::vector<int> piece;            // per half-edge
+  std::vector<Vec3> position;    // piece vertices: input vertices, then level crossings
+  std::vector<int> start{0};     // piece p: half-edges start[p] .. start[p+1]-1
+  std::vector<int> band;         // per piece
+  std::vector<int> tri;          // per piece
+  std::vector<int> from;         // per half-edge
+  std::vector<int> level;        // per half-edge: level index of an isoline side, else -1
+  std::vector<int> source_face;  // per half-edge on the disc boundary: input face, else -1
+  std::vector<int> source_side;  // ... and its side
+  std::vector<int> twin;         // per half-edge, -1 if none
+  std::vector<int> piece;        // per half-edge
 
   int next(int h) const {
     const int p = piece[at(h)];
@@ -199,8 +199,8 @@ struct Pieces {
   int to(int h) const { return from[at(next(h))]; }
 };
 
-Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris,
-             const Eigen::VectorXd& t, double spacing, int bands) {
+Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const Eigen::VectorXd& t,
+             double spacing, int bands) {
   Pieces out;
   out.position = disc.positions;
   // Directed input edges that are sides of input faces on the boundary.
@@ -209,7 +209,7 @@ Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris,
     const std::vector<int>& face = disc.faces[f];
     for (std::size_t i = 0; i < face.size(); ++i) {
       directed[key(face[i], face[(i + 1) % face.size()])] = {static_cast<int>(f),
-                                                              static_cast<int>(i)};
+                                                             static_cast<int>(i)};
     }
   }
   // Values a hair off the levels, so no vertex lies on one.
@@ -311,7 +311,8 @@ Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris,
   out.twin.assign(out.from.size(), -1);
   std::unordered_map<std::uint64_t, int> half;
   half.reserve(out.from.size());
-  for (int h = 0; h < static_cast<int>(out.from.size()); ++h) half[key(out.from[at(h)], out.to(h))] = h;
+  for (int h = 0; h < static_cast<int>(out.from.size()); ++h)
+    half[key(out.from[at(h)], out.to(h))] = h;
   for (int h = 0; h < static_cast<int>(out.from.size()); ++h) {
     auto it = half.find(key(out.to(h), out.from[at(h)]));
     if (it != half.end()) out.twin[at(h)] = it->second;
@@ -334,7 +335,7 @@ enum class Side : std::uint8_t { Low, High, Wale };
 
 struct Run {
   Side side = Side::Wale;
-  bool level = false;         // an isoline (shared with the next strip), not the disc boundary
+  bool level = false;          // an isoline (shared with the next strip), not the disc boundary
   std::vector<int> halfedges;  // in loop order
   double length = 0;
 };
@@ -380,11 +381,13 @@ struct Builder {
     return std::max(1, static_cast<int>(std::lround(length / params.course_mm)));
   }
 
-  std::vector<int> sample(const std::vector<int>& halfedges, std::vector<std::int32_t>* arcs, int n) {
+  std::vector<int> sample(const std::vector<int>& halfedges, std::vector<std::int32_t>* arcs,
+                          int n) {
     std::vector<double> along{0};
     for (int h : halfedges) {
-      along.push_back(along.back() +
-                      (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm());
+      along.push_back(
+          along.back() +
+          (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm());
     }
     const double total = along.back();
     std::vector<int> out{stitch_vertex(pieces.from[at(halfedges.front())])};
@@ -445,7 +448,8 @@ struct Builder {
     std::vector<int> counts;
     for (const Run& run : chain.runs) {
       const std::vector<int>* done = run.level ? sampled_curve(run) : nullptr;
-      counts.push_back(done != nullptr ? static_cast<int>(done->size()) - 1 : auto_count(run.length));
+      counts.push_back(done != nullptr ? static_cast<int>(done->size()) - 1
+                                       : auto_count(run.length));
     }
     return counts;
   }
@@ -551,7 +555,7 @@ struct Builder {
         const double c = tri.grad.norm() > 0 && outward.norm() > 0
                              ? tri.grad.normalized().dot(outward.normalized())
                              : 0.0;
-        piece.side = c > params.side_cosine ? Side::High
+        piece.side = c > params.side_cosine    ? Side::High
                      : c < -params.side_cosine ? Side::Low
                                                : Side::Wale;
       }
@@ -721,12 +725,14 @@ struct Builder {
     for (const Run& r : chain.runs) {
       for (int h : r.halfedges) {
         all.push_back(h);
-        total += (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
+        total +=
+            (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
       }
     }
     double walked = 0;
     for (int h : all) {
-      walked += (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
+      walked +=
+          (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
       if (walked >= 0.5 * total) return arc_of(h);
     }
     return all.empty() ? kNoArc : arc_of(all.back());
@@ -758,7 +764,8 @@ struct Builder {
     std::vector<double> cost(at((na + 1) * width * 3), inf);
     std::vector<std::int8_t> came(at((na + 1) * width * 3), -1);
     auto wale_cost = [&](int i, int j) {
-      const double len = (mesh.positions[at(l[at(i0 + i)])] - mesh.positions[at(t[at(j0 + j)])]).norm();
+      const double len =
+          (mesh.positions[at(l[at(i0 + i)])] - mesh.positions[at(t[at(j0 + j)])]).norm();
       const double d = (len - params.wale_mm) / params.wale_mm;
       return d * d;
     };
@@ -773,7 +780,8 @@ struct Builder {
       return false;
     };
     const std::array<std::pair<int, int>, 3> moves{{{1, 1}, {2, 1}, {1, 2}}};
-    const double pentagon = params.pentagon_cost;  // prefer knit stitches where rows keep their length
+    const double pentagon =
+        params.pentagon_cost;  // prefer knit stitches where rows keep their length
     const double rule = params.stability_cost;
     cost[index(0, 0, 0)] = wale_cost(0, 0);
     for (int i = 0; i <= na; ++i) {
@@ -796,7 +804,8 @@ struct Builder {
                 c += rule;  // rule 1: shaping at the edge of the fabric
               }
               if (shaped(i, moves[m].first)) c += rule;  // rule 2: stacked shaping
-              if (last != 0 && last != static_cast<int>(m)) c += rule;  // rule 3: increase by decrease
+              if (last != 0 && last != static_cast<int>(m))
+                c += rule;  // rule 3: increase by decrease
             }
             if (c < cost[index(ni, nj, static_cast<int>(m))]) {
               cost[index(ni, nj, static_cast<int>(m))] = c;
@@ -825,7 +834,9 @@ struct Builder {
     return steps;
   }
 
-  int first_vertex(const Chain& c) const { return pieces.from[at(c.runs.front().halfedges.front())]; }
+  int first_vertex(const Chain& c) const {
+    return pieces.from[at(c.runs.front().halfedges.front())];
+  }
   int last_vertex(const Chain& c) const { return pieces.to(c.runs.back().halfedges.back()); }
 
   // A strip around a saddle of the row time (two bottom and two top chains,
@@ -869,7 +880,8 @@ struct Builder {
     };
     const double d_low = (pieces.position[at(corner(0))] - pieces.position[at(corner(2))]).norm();
     const double d_high =
-        (pieces.position[at(corner_after_high(1))] - pieces.position[at(corner_after_high(3))]).norm();
+        (pieces.position[at(corner_after_high(1))] - pieces.position[at(corner_after_high(3))])
+            .norm();
     // Join the side chains at the chosen corners to their bottom chains.
     const bool at_low = d_low <= d_high;  // corners after L chains 0 and 2
     std::vector<Chain> chains_in_order;   // L0 s0 H1 s1 L2 s2 H3 s3, sides possibly absent
@@ -962,7 +974,8 @@ struct Builder {
       // faces the same way. The boundary is the other chain.
       Chain& only = loop.front();
       const Side other = only.side == Side::Low ? Side::High : Side::Low;
-      while (!only.runs.front().level) std::rotate(only.runs.begin(), only.runs.begin() + 1, only.runs.end());
+      while (!only.runs.front().level)
+        std::rotate(only.runs.begin(), only.runs.begin() + 1, only.runs.end());
       Chain rest;
       rest.side = other;
       while (only.runs.size() > 1 && !only.runs.back().level) {
@@ -980,7 +993,10 @@ struct Builder {
       for (const Chain& c : loop) {
         double len = 0;
         for (const Run& r : c.runs) len += r.length;
-        pattern += std::string(" ") + (c.side == Side::Low ? "L" : c.side == Side::High ? "H" : "S") +
+        pattern += std::string(" ") +
+                   (c.side == Side::Low    ? "L"
+                    : c.side == Side::High ? "H"
+                                           : "S") +
                    std::to_string(static_cast<int>(len * 10) / 10.0).substr(0, 4);
       }
       problems.push_back(where + pattern + ": " + std::to_string(lows) + " bottom and " +
@@ -1048,8 +1064,7 @@ struct Builder {
     if (left_shared != (t.front() == l.front()) || right_shared != (t.back() == l.back())) {
       throw std::logic_error("stitch meshing: chain ends disagree with the strip's sides");
     }
-    if (left_shared && right_shared && a == 1 && b == 2 &&
-        high_on_level[0] != high_on_level[1]) {
+    if (left_shared && right_shared && a == 1 && b == 2 && high_on_level[0] != high_on_level[1]) {
       // One fixed bottom side, a top of a level piece and a boundary piece:
       // the boundary piece is the wale side of a short-row triangle.
       const EdgeRole first = high_on_level[0] ? EdgeRole::CourseOut : EdgeRole::Wale;
@@ -1071,8 +1086,8 @@ struct Builder {
     std::int32_t right_arc = right_wale != nullptr ? wale_arc(*right_wale) : kNoArc;
     const bool room_for_both = a >= 2 && b >= 2;
     const bool left_triangle = left_shared && (room_for_both || !right_shared) && a >= 1 && b >= 1;
-    const bool right_triangle = right_shared && (room_for_both || !left_shared) && a >= 1 && b >= 1 &&
-                                !(left_triangle && (a < 2 || b < 2));
+    const bool right_triangle = right_shared && (room_for_both || !left_shared) && a >= 1 &&
+                                b >= 1 && !(left_triangle && (a < 2 || b < 2));
     if (left_triangle) {
       // §6.3 short row ending on the left: the strip narrows to a point.
       add_face({l[0], l[1], t[1]}, {R::CourseIn, R::Wale, R::CourseOut},
@@ -1268,7 +1283,8 @@ RemeshResult remesh_anisotropic(const LabelledDisc& disc, const RemeshParams& pa
   for (const auto& [band, root] : order) {
     const std::vector<std::vector<int>>& strip_loops = loops[root];
     ++builder.stats.strips;
-    const std::string where = "row " + std::to_string(band) + " strip at piece " + std::to_string(root);
+    const std::string where =
+        "row " + std::to_string(band) + " strip at piece " + std::to_string(root);
     if (strip_loops.size() != 1) {
       builder.problems.push_back(where + ": " + std::to_string(strip_loops.size()) +
                                  " boundary loops (a strip with a hole: the row time has an "
@@ -1297,7 +1313,8 @@ EdgeLengthStats length_stats(const std::vector<double>& lengths, double target) 
   if (lengths.empty()) return s;
   s.min_mm = *std::min_element(lengths.begin(), lengths.end());
   s.max_mm = *std::max_element(lengths.begin(), lengths.end());
-  s.mean_mm = std::accumulate(lengths.begin(), lengths.end(), 0.0) / static_cast<double>(lengths.size());
+  s.mean_mm =
+      std::accumulate(lengths.begin(), lengths.end(), 0.0) / static_cast<double>(lengths.size());
   int within = 0;
   for (double x : lengths) within += std::abs(x - target) <= 0.15 * target;
   s.within_15_percent = static_cast<double>(within) / static_cast<double>(lengths.size());
@@ -1426,7 +1443,8 @@ double disc_area_mm2(const LabelledDisc& disc) {
 double disc_boundary_length_mm(const LabelledDisc& disc) {
   std::unordered_map<std::uint64_t, int> directed;
   for (const std::vector<int>& face : disc.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i) ++directed[key(face[i], face[(i + 1) % face.size()])];
+    for (std::size_t i = 0; i < face.size(); ++i)
+      ++directed[key(face[i], face[(i + 1) % face.size()])];
   }
   double length = 0;
   for (const std::vector<int>& face : disc.faces) {

@@ -69,11 +69,11 @@ struct RemeshParams {
 };
 
 struct RemeshStats {
-  int rows = 0;             // K
-  int strips = 0;           // band components
-  int lenses_skipped = 0;   // strips of one side on each chain (nothing between them)
-  int saddles_split = 0;    // X-shaped strips around a saddle of the row time, split in two
-  int invalid_faces = 0;    // faces the zip could not make valid (see problems)
+  int rows = 0;            // K
+  int strips = 0;          // band components
+  int lenses_skipped = 0;  // strips of one side on each chain (nothing between them)
+  int saddles_split = 0;   // X-shaped strips around a saddle of the row time, split in two
+  int invalid_faces = 0;   // faces the zip could not make valid (see problems)
   double solve_seconds = 0;
   double total_seconds = 0;
 };
@@ -117,10 +117,10 @@ StitchMeshFigures measure(const StitchMesh& mesh);
 // §6.3, Fig. 7: configurations that knit unreliably, counted in a finished
 // stitch mesh (docs/stitch-mesh.md has a picture of each).
 struct StabilityCounts {
-  int edge_shaping = 0;      // 1: increase/decrease with a wale side on the boundary
-  int stacked_shaping = 0;   // 2: increase/decrease on a course side of one below
-  int opposed_shaping = 0;   // 3: increase and decrease sharing a wale side
-  int one_stitch_rows = 0;   // 4: two short-row triangles sharing their wale side
+  int edge_shaping = 0;     // 1: increase/decrease with a wale side on the boundary
+  int stacked_shaping = 0;  // 2: increase/decrease on a course side of one below
+  int opposed_shaping = 0;  // 3: increase and decrease sharing a wale side
+  int one_stitch_rows = 0;  // 4: two short-row triangles sharing their wale side
 };
 StabilityCounts count_stability_rules(const StitchMesh& mesh);
 

@@ -20,8 +20,7 @@ const std::vector<Verb>& verbs() {
        run_cut},
       {"stitch-mesh",
        "stitch-mesh DIR [--gauge N] [--swatch SxR:WxH_MM | --stitch-mm CxW] [--no-picture]",
-       "remesh a cut folder into a stitch mesh of course x wale faces (paper §6)",
-       run_stitch_mesh},
+       "remesh a cut folder into a stitch mesh of course x wale faces (paper §6)", run_stitch_mesh},
   };
   return kVerbs;
 }

@@ -78,7 +78,8 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
   if (problem.empty()) problem = planner::check_gauge(gauge);
   if (problem.empty() && (params.straighten_iterations < 0 || !(params.label_weight >= 0) ||
                           !(params.pentagon_cost >= 0) || !(params.stability_cost >= 0))) {
-    problem = "--straighten, --label-weight, --pentagon-cost and --stability-cost must not be negative";
+    problem =
+        "--straighten, --label-weight, --pentagon-cost and --stability-cost must not be negative";
   }
   if (!problem.empty()) {
     context.err << "wearknit stitch-mesh: " << problem << "\n";
@@ -149,15 +150,15 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
   }
   if (values.count("quiet") == 0 && *format == DiagnosticFormat::Text) {
     const planner::StitchMeshFigures& f = report.figures;
-    context.out << std::fixed << std::setprecision(3) << "stitch mesh: " << f.faces
-                << " stitches (" << f.knit << " knit, " << f.increase << " increase, "
-                << f.decrease << " decrease, " << f.short_row << " short-row) in "
-                << result.stats.rows << " rows; course " << f.course.mean_mm << " mm (target "
-                << gauge.course_mm << "), wale " << f.wale.mean_mm << " mm (target "
-                << gauge.wale_mm << "); " << std::setprecision(2) << report.seconds << " s\n"
+    context.out << std::fixed << std::setprecision(3) << "stitch mesh: " << f.faces << " stitches ("
+                << f.knit << " knit, " << f.increase << " increase, " << f.decrease << " decrease, "
+                << f.short_row << " short-row) in " << result.stats.rows << " rows; course "
+                << f.course.mean_mm << " mm (target " << gauge.course_mm << "), wale "
+                << f.wale.mean_mm << " mm (target " << gauge.wale_mm << "); "
+                << std::setprecision(2) << report.seconds << " s\n"
                 << "wrote " << dir << "/{stitch-mesh.smobj,stitch-mesh.obj"
-                << (values.count("no-picture") ? "" : ",stitch-mesh.png") << "} and updated "
-                << dir << "/report.json\n";
+                << (values.count("no-picture") ? "" : ",stitch-mesh.png") << "} and updated " << dir
+                << "/report.json\n";
   }
   return kExitOk;
 }

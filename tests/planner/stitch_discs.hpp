@@ -4,8 +4,8 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <set>
@@ -39,9 +39,8 @@ inline LabelledDisc grid_disc(int n, int m, const Map& map) {
 
 // A flat rectangle, course along x.
 inline LabelledDisc rectangle(double width_mm, double height_mm, int n = 30, int m = 20) {
-  return grid_disc(n, m, [=](double s, double t) {
-    return Eigen::Vector3d(width_mm * s, height_mm * t, 0.0);
-  });
+  return grid_disc(
+      n, m, [=](double s, double t) { return Eigen::Vector3d(width_mm * s, height_mm * t, 0.0); });
 }
 inline double rectangle_area(double width_mm, double height_mm) {
   return width_mm * height_mm;
@@ -92,7 +91,8 @@ inline double hemisphere_area(double radius_mm, double beta0 = 0.25) {
 inline double farthest_boundary_vertex(const LabelledDisc& disc, const StitchMesh& mesh) {
   std::set<std::pair<int, int>> directed;
   for (const auto& face : disc.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i) directed.insert({face[i], face[(i + 1) % face.size()]});
+    for (std::size_t i = 0; i < face.size(); ++i)
+      directed.insert({face[i], face[(i + 1) % face.size()]});
   }
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
   for (const auto& [a, b] : directed) {

@@ -40,7 +40,8 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
   EXPECT_EQ(s.at("boundary_loops"), 1);
 
   // --stitch-mm replaces the swatch; a run again replaces only its own member.
-  const auto again = run_wearknit("stitch-mesh '" + dir.string() + "' --stitch-mm 2x3 -q --no-picture");
+  const auto again =
+      run_wearknit("stitch-mesh '" + dir.string() + "' --stitch-mm 2x3 -q --no-picture");
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(again.out, "");
   const auto report2 = nlohmann::json::parse(read_file(dir / "report.json"));
@@ -69,8 +70,9 @@ TEST(StitchMeshCliTest, SaysWhatIsMissingAndWritesNothing) {
   const auto dir = make_temp_dir("stitch-cli-missing");
   auto r = run_wearknit("stitch-mesh '" + (dir / "nowhere").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, (dir / "nowhere").string() +
-                       ": error: [P020] no such folder (run `wearknit cut GARMENT -o DIR` first)\n");
+  EXPECT_EQ(r.err,
+            (dir / "nowhere").string() +
+                ": error: [P020] no such folder (run `wearknit cut GARMENT -o DIR` first)\n");
   r = run_wearknit("stitch-mesh '" + dir.string() + "'");  // a folder without cut files
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("[P020]"), std::string::npos);

@@ -41,9 +41,10 @@ void expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2, const Re
   std::printf(
       "[%s] faces %d (expected %.0f) knit %d inc %d dec %d short %d | course mean %.3f "
       "within %.3f | wale mean %.3f within %.3f | rows %d strips %d lenses %d | %.3f s\n",
-      name.c_str(), f.faces, expected, f.knit, f.increase, f.decrease, f.short_row, f.course.mean_mm,
-      f.course.within_15_percent, f.wale.mean_mm, f.wale.within_15_percent, result.stats.rows,
-      result.stats.strips, result.stats.lenses_skipped, result.stats.total_seconds);
+      name.c_str(), f.faces, expected, f.knit, f.increase, f.decrease, f.short_row,
+      f.course.mean_mm, f.course.within_15_percent, f.wale.mean_mm, f.wale.within_15_percent,
+      result.stats.rows, result.stats.strips, result.stats.lenses_skipped,
+      result.stats.total_seconds);
 }
 
 RemeshParams default_params() {

@@ -27,10 +27,14 @@ StitchMesh small_mesh() {
   mesh.wale_mm = 3.0;
   mesh.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 3, 0},
                     {1, 3, 0}, {2, 3, 0}, {0, 6, 0}, {2, 6, 0}};
-  StitchFace a{{0, 1, 4, 3}, {R::CourseIn, R::Wale, R::CourseOut, R::Wale}, {5, kNoArc, kNoArc, 7},
+  StitchFace a{{0, 1, 4, 3},
+               {R::CourseIn, R::Wale, R::CourseOut, R::Wale},
+               {5, kNoArc, kNoArc, 7},
                FaceType::Knit};
-  StitchFace b{{1, 2, 5, 4}, {R::CourseIn, R::Wale, R::CourseOut, R::Wale},
-               {5, kNoArc, kNoArc, kNoArc}, FaceType::Knit};
+  StitchFace b{{1, 2, 5, 4},
+               {R::CourseIn, R::Wale, R::CourseOut, R::Wale},
+               {5, kNoArc, kNoArc, kNoArc},
+               FaceType::Knit};
   StitchFace c{{3, 4, 5, 7, 6},
                {R::CourseIn, R::CourseIn, R::Wale, R::CourseOut, R::Wale},
                {kNoArc, kNoArc, kNoArc, kNoArc, 7},
@@ -61,8 +65,8 @@ TEST(StitchMeshTest, RejectsFacesThatAreNoneOfTheFourTypes) {
   // sides on a triangle, a hexagon, course sides only.
   EXPECT_FALSE(classify_roles({R::CourseIn, R::Wale, R::Wale, R::CourseOut}));
   EXPECT_FALSE(classify_roles({R::CourseIn, R::Wale, R::Wale}));
-  EXPECT_FALSE(classify_roles(
-      {R::CourseIn, R::Wale, R::CourseOut, R::CourseOut, R::CourseOut, R::Wale}));
+  EXPECT_FALSE(
+      classify_roles({R::CourseIn, R::Wale, R::CourseOut, R::CourseOut, R::CourseOut, R::Wale}));
   EXPECT_FALSE(classify_roles({R::CourseIn, R::CourseIn, R::CourseOut, R::CourseOut}));
   EXPECT_FALSE(classify_roles({R::CourseIn, R::Wale, R::CourseIn, R::Wale}));
 }
@@ -158,8 +162,9 @@ TEST(StitchMeshTest, SmobjReaderNamesTheLineOfEachProblem) {
   EXPECT_EQ(read_errors("L purl -l1 y1 +l1 y1\n"),
             std::vector<std::string>{"bad.smobj:1: error: [P082] unknown face type `purl` (knit, "
                                      "increase, decrease, short-row)"});
-  EXPECT_EQ(read_errors("L knit -l1 y1 +x1 y1\n"),
-            std::vector<std::string>{"bad.smobj:1: error: [P082] edge type `+x1` is not -lN, +lN or yN"});
+  EXPECT_EQ(
+      read_errors("L knit -l1 y1 +x1 y1\n"),
+      std::vector<std::string>{"bad.smobj:1: error: [P082] edge type `+x1` is not -lN, +lN or yN"});
   EXPECT_EQ(read_errors("v 1 2\n"),
             std::vector<std::string>{"bad.smobj:1: error: [P081] vertex needs three numbers"});
   EXPECT_EQ(read_errors(std::string(kTwoKnits) + "T 1\n"),
@@ -196,8 +201,9 @@ TEST(StitchMeshGaugeTest, ParsesSwatchAndStitchSize) {
 
 TEST(StitchMeshGaugeTest, RejectsMalformedSizesAndKeepsTheGauge) {
   StitchGauge gauge;
-  EXPECT_EQ(parse_swatch("40x40", gauge),
-            "`40x40` is not STITCHESxROWS:WIDTHxHEIGHT_MM with positive numbers (e.g. 40x40:42x115)");
+  EXPECT_EQ(
+      parse_swatch("40x40", gauge),
+      "`40x40` is not STITCHESxROWS:WIDTHxHEIGHT_MM with positive numbers (e.g. 40x40:42x115)");
   EXPECT_EQ(parse_swatch("0x40:42x115", gauge),
             "`0x40:42x115` is not STITCHESxROWS:WIDTHxHEIGHT_MM with positive numbers (e.g. "
             "40x40:42x115)");
