@@ -839,72 +839,68 @@ struct Builder {
   }
   int last_vertex(const Chain& c) const { return pieces.to(c.runs.back().halfedges.back()); }
 
-  // A strip around a saddle of the row time (two bottom and two top chains,
-  // X-shaped): it is split into two strips by one wale edge between two
-  // opposite corners where a bottom and a top chain meet. A side chain at such
-  // a corner is first joined to the bottom chain (cast-on stitches), so the
-  // corner is a point. Of the two pairs of opposite corners the one with the
-  // shorter edge is used.
-  bool split_saddle(const std::string& where, std::vector<Chain> loop) {
+  // A strip around saddles of the row time (m >= 2 bottom and m top chains,
+  // alternating; X-shaped for one saddle): one wale edge between two corners
+  // two course chains apart (a corner is where a bottom and a top chain
+  // meet) cuts off a simple strip of the two chains between them, and leaves
+  // m - 1 pairs. A side chain at such a corner is first joined to the
+  // bottom chain there (cast-on stitches), so the corner is a point. Of the
+  // 2m possible edges the shortest is used; the rest is split again.
+  bool split_folds(const std::string& where, std::vector<Chain> loop) {
     while (loop.front().side != Side::Low) std::rotate(loop.begin(), loop.begin() + 1, loop.end());
-    // Positions of the four course chains and the side chains after each.
-    std::vector<std::size_t> course;
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      if (loop[i].side != Side::Wale) course.push_back(i);
+    std::vector<Chain> courses;
+    std::vector<Chain> sides;      // side chain after each course chain
+    std::vector<bool> has_side;    // a boundary side, or an edge made by an earlier split
+    for (Chain& c : loop) {
+      if (c.side == Side::Wale) {
+        if (courses.empty() || has_side.back()) return false;
+        sides.back() = std::move(c);
+        has_side.back() = true;
+      } else {
+        if (!courses.empty() && courses.back().side == c.side) return false;
+        if (c.runs.empty()) return false;
+        courses.push_back(std::move(c));
+        Chain none;
+        none.side = Side::Wale;
+        sides.push_back(std::move(none));
+        has_side.push_back(false);
+      }
     }
-    if (course.size() != 4) return false;
-    for (std::size_t k = 0; k < 4; ++k) {
-      if (loop[course[k]].side != (k % 2 == 0 ? Side::Low : Side::High)) return false;
-      if (loop[course[k]].runs.empty()) return false;
-    }
-    // Side chain after course chain k (or none).
-    auto side_after = [&](std::size_t k) -> Chain* {
-      const std::size_t i = (course[k] + 1) % loop.size();
-      return loop[i].side == Side::Wale ? &loop[i] : nullptr;
-    };
-    // Corner after course chain k, as it would be once its side chain joins
-    // the bottom chain: the bottom chain's end (k even) or start (k odd).
+    const std::size_t n = courses.size();
+    if (n < 4 || n % 2 != 0) return false;
+    // An edge of an earlier split cannot join a bottom chain.
+    auto usable = [&](std::size_t k) { return !has_side[k] || !sides[k].runs.empty(); };
+    // Corner after course chain k once its side chain has joined a bottom chain.
     auto corner = [&](std::size_t k) {
-      if (k % 2 == 0) {
-        const Chain* s = side_after(k);
-        return s != nullptr && !s->runs.empty() ? last_vertex(*s) : last_vertex(loop[course[k]]);
+      if (courses[k].side == Side::Low) {
+        return sides[k].runs.empty() ? last_vertex(courses[k]) : last_vertex(sides[k]);
       }
-      return first_vertex(loop[course[(k + 1) % 4]]);
+      return sides[k].runs.empty() ? first_vertex(courses[(k + 1) % n]) : first_vertex(sides[k]);
     };
-    // Corners after H chains (1, 3) as they are: joining a side chain to the
-    // following bottom chain moves the corner to the side chain's start.
-    auto corner_after_high = [&](std::size_t k) {
-      const Chain* s = side_after(k);
-      return s != nullptr && !s->runs.empty() ? first_vertex(*s)
-                                              : first_vertex(loop[course[(k + 1) % 4]]);
-    };
-    const double d_low = (pieces.position[at(corner(0))] - pieces.position[at(corner(2))]).norm();
-    const double d_high =
-        (pieces.position[at(corner_after_high(1))] - pieces.position[at(corner_after_high(3))])
-            .norm();
-    // Join the side chains at the chosen corners to their bottom chains.
-    const bool at_low = d_low <= d_high;  // corners after L chains 0 and 2
-    std::vector<Chain> chains_in_order;   // L0 s0 H1 s1 L2 s2 H3 s3, sides possibly absent
-    std::vector<Chain> sides(4);
-    std::vector<bool> has_side(4, false);
-    std::vector<Chain> courses(4);
-    for (std::size_t k = 0; k < 4; ++k) {
-      courses[k] = loop[course[k]];
-      if (Chain* s = side_after(k)) {
-        sides[k] = *s;
-        has_side[k] = !s->runs.empty();
+    std::size_t pick = 0;
+    double shortest = std::numeric_limits<double>::infinity();
+    bool found = false;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!usable(k) || !usable((k + 2) % n)) continue;
+      found = true;
+      const double d =
+          (pieces.position[at(corner(k))] - pieces.position[at(corner((k + 2) % n))]).norm();
+      if (d < shortest) {
+        shortest = d;
+        pick = k;
       }
     }
-    for (std::size_t k = 0; k < 4; ++k) {
+    if (!found) return false;
+    for (std::size_t k : {pick, (pick + 2) % n}) {
       if (!has_side[k]) continue;
-      if (at_low && k % 2 == 0) {
-        for (Run& r : sides[k].runs) courses[k].runs.push_back(r);  // end of L
-        has_side[k] = false;
-      } else if (!at_low && k % 2 == 1) {
-        Chain& next = courses[(k + 1) % 4];  // start of the next L
+      has_side[k] = false;
+      if (courses[k].side == Side::Low) {
+        for (Run& r : sides[k].runs) courses[k].runs.push_back(std::move(r));
+      } else {
+        Chain& next = courses[(k + 1) % n];
         next.runs.insert(next.runs.begin(), sides[k].runs.begin(), sides[k].runs.end());
-        has_side[k] = false;
       }
+      sides[k].runs.clear();
     }
     for (Chain& c : courses) {
       std::vector<Run> joined;
@@ -925,28 +921,24 @@ struct Builder {
       out.push_back(courses[k]);
       if (has_side[k]) out.push_back(sides[k]);
     };
-    std::vector<Chain> first;
-    std::vector<Chain> second;
-    if (at_low) {
-      // Strips L0 + H3 (meeting after H3) and L2 + H1 (meeting after H1).
-      with_side(first, 0);
-      first.push_back(edge);
-      with_side(first, 3);
-      with_side(second, 2);
-      second.push_back(edge);
-      with_side(second, 1);
-    } else {
-      // Strips L0 + H1 (meeting after L0) and L2 + H3 (meeting after L2).
-      with_side(first, 0);
-      with_side(first, 1);
-      first.push_back(edge);
-      with_side(second, 2);
-      with_side(second, 3);
-      second.push_back(edge);
+    // Cut off: course chains pick+1 and pick+2 with the edge; the rest keeps
+    // the edge on its other side.
+    std::vector<Chain> part;
+    with_side(part, (pick + 1) % n);
+    part.push_back(courses[(pick + 2) % n]);  // its side was joined or is empty
+    part.push_back(edge);
+    std::vector<Chain> rest;
+    for (std::size_t k = (pick + 3) % n; k != (pick + 1) % n; k = (k + 1) % n) {
+      if (k == pick) {
+        rest.push_back(courses[k]);
+        rest.push_back(edge);
+      } else {
+        with_side(rest, k);
+      }
     }
     ++stats.saddles_split;
-    strip(where + " (saddle, first half)", std::move(first));
-    strip(where + " (saddle, second half)", std::move(second));
+    strip(where + " (fold)", std::move(part));
+    strip(where + " (rest)", std::move(rest));
     return true;
   }
 
@@ -987,7 +979,7 @@ struct Builder {
         lows = highs = 1;
       }
     }
-    if (lows == 2 && highs == 2 && split_saddle(where, loop)) return;
+    if (lows >= 2 && lows == highs && split_folds(where, loop)) return;
     if (lows != 1 || highs != 1) {
       std::string pattern;
       for (const Chain& c : loop) {
