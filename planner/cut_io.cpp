@@ -92,6 +92,8 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
             {"faces", r.input_faces}}},
           {"proxy",
            {{"remeshed", r.remeshed},
+            {"method", r.proxy_method},
+            {"remesh_failure", r.remesh_failure},
             {"edge_mm", r.proxy_edge_mm},
             {"vertices", cut.proxy.num_vertices()},
             {"faces", cut.proxy.num_faces()},

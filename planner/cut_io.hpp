@@ -29,6 +29,8 @@ struct CutReport {
   double proxy_edge_mm = 0.0;
   int polygons_split = 0;
   int triangles_paired = 0;
+  std::string proxy_method = "input";
+  std::string remesh_failure;
   CutParams params;
   double load_seconds = 0.0;
   double proxy_seconds = 0.0;

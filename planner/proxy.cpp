@@ -1,30 +1,19 @@
 #include "planner/proxy.hpp"
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
-#include <OpenMesh/Tools/Decimater/ModEdgeLengthT.hh>
-#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <set>
 #include <stdexcept>
 
 #include "planner/mesh.hpp"
+#include "planner/mesh_io.hpp"
+#include "planner/remesh.hpp"
 
 namespace planner {
 
 namespace {
-
-struct TriTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-  VertexAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
-  EdgeAttributes(OpenMesh::Attributes::Status);
-  FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
-  HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
-};
-using TriMesh = OpenMesh::TriMesh_ArrayKernelT<TriTraits>;
 
 double corner_angle_at(const PolygonMesh& mesh, const std::vector<int>& face, std::size_t i) {
   const std::size_t n = face.size();
@@ -61,112 +50,6 @@ double total_area(const PolygonMesh& mesh) {
     area += 0.5 * n.norm();
   }
   return area;
-}
-
-// Shortest edges collapse first until none is shorter than `target`; normal
-// flips are refused and OpenMesh's link condition keeps the topology.
-PolygonMesh decimate(const PolygonMesh& input, double target) {
-  TriMesh tri;
-  std::vector<TriMesh::VertexHandle> handles;
-  handles.reserve(input.positions.size());
-  for (const Vec3& p : input.positions) {
-    handles.push_back(tri.add_vertex(TriMesh::Point(p.x(), p.y(), p.z())));
-  }
-  for (const auto& face : input.faces) {
-    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-      const auto fh = tri.add_face(handles[static_cast<std::size_t>(face[0])],
-                                   handles[static_cast<std::size_t>(face[i])],
-                                   handles[static_cast<std::size_t>(face[i + 1])]);
-      if (!fh.is_valid()) throw std::logic_error("decimate: checked mesh rejected by OpenMesh");
-    }
-  }
-  tri.update_face_normals();
-  tri.update_vertex_normals();
-  {
-    using Decimater = OpenMesh::Decimater::DecimaterT<TriMesh>;
-    using EdgeLength = OpenMesh::Decimater::ModEdgeLengthT<TriMesh>::Handle;
-    using NormalFlipping = OpenMesh::Decimater::ModNormalFlippingT<TriMesh>::Handle;
-    Decimater decimater(tri);
-    EdgeLength edge_length;
-    NormalFlipping normal_flipping;
-    decimater.add(edge_length);
-    decimater.add(normal_flipping);
-    decimater.module(edge_length).set_edge_length(target);
-    decimater.module(edge_length).set_binary(false);
-    decimater.module(normal_flipping).set_max_normal_deviation(60.0);
-    decimater.initialize();
-    decimater.decimate();
-  }
-  tri.garbage_collection();
-  PolygonMesh out;
-  out.positions.reserve(tri.n_vertices());
-  for (const auto vh : tri.vertices()) {
-    const auto& p = tri.point(vh);
-    out.positions.emplace_back(p[0], p[1], p[2]);
-  }
-  for (const auto fh : tri.faces()) {
-    std::vector<int> face;
-    for (const auto vh : tri.fv_range(fh)) face.push_back(vh.idx());
-    out.faces.push_back(std::move(face));
-  }
-  return out;
-}
-
-// The representative of the 4-fold direction (o, n x o, -o, -n x o) closest to `target`.
-Vec3 closest_representative(const Vec3& o, const Vec3& n, const Vec3& target) {
-  const Vec3 q = n.cross(o);
-  const double a = o.dot(target);
-  const double b = q.dot(target);
-  if (std::abs(a) >= std::abs(b)) return a >= 0 ? o : Vec3(-o);
-  return b >= 0 ? q : Vec3(-q);
-}
-
-// Extrinsic 4-RoSy smoothing (Instant Meshes, Jakob et al. 2015, §3.1):
-// every vertex moves its direction towards the sum of its neighbours'
-// closest representatives, projected onto its tangent plane.
-std::vector<Vec3> orientation_field(const HalfedgeMesh& mesh, std::vector<Vec3>& normals,
-                                    int iterations) {
-  const int nv = mesh.num_vertices();
-  normals.assign(static_cast<std::size_t>(nv), Vec3::Zero());
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    const Vec3 n = mesh.face_normal(f);
-    const int start = mesh.face_start(f);
-    for (int i = 0; i < mesh.degree(f); ++i)
-      normals[static_cast<std::size_t>(mesh.from(start + i))] += n;
-  }
-  std::vector<Vec3> field(static_cast<std::size_t>(nv));
-  for (int v = 0; v < nv; ++v) {
-    Vec3& n = normals[static_cast<std::size_t>(v)];
-    if (n.norm() > 0)
-      n.normalize();
-    else
-      n = Vec3::UnitZ();
-    // A fixed start (no randomness): the axis least aligned with the normal.
-    Vec3 axis = Vec3::UnitX();
-    if (std::abs(n.x()) > 0.8) axis = Vec3::UnitY();
-    field[static_cast<std::size_t>(v)] = (axis - n * n.dot(axis)).normalized();
-  }
-  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(nv));
-  for (int h = 0; h < mesh.num_halfedges(); ++h) {
-    neighbours[static_cast<std::size_t>(mesh.from(h))].push_back(mesh.to(h));
-    if (mesh.twin(h) < 0) neighbours[static_cast<std::size_t>(mesh.to(h))].push_back(mesh.from(h));
-  }
-  for (int it = 0; it < iterations; ++it) {
-    for (int v = 0; v < nv; ++v) {
-      const Vec3& n = normals[static_cast<std::size_t>(v)];
-      Vec3 sum = field[static_cast<std::size_t>(v)];
-      double weight = 1.0;
-      for (int w : neighbours[static_cast<std::size_t>(v)]) {
-        Vec3 r = closest_representative(field[static_cast<std::size_t>(w)],
-                                        normals[static_cast<std::size_t>(w)], sum / weight);
-        sum += r;
-        weight += 1.0;
-      }
-      Vec3 t = sum - n * n.dot(sum);
-      if (t.norm() > 1e-12) field[static_cast<std::size_t>(v)] = t.normalized();
-    }
-  }
-  return field;
 }
 
 // How far edge direction `e` is from the field (0 aligned, up to ~0.29 at 45 degrees).
@@ -247,6 +130,14 @@ int pair_triangles(PolygonMesh& mesh, int field_iterations) {
   return paired;
 }
 
+bool is_valid_proxy(const PolygonMesh& mesh) {
+  for (const auto& face : mesh.faces) {
+    if (face.size() > 4) return false;
+  }
+  knitout::DiagnosticSink sink;
+  return check_mesh(mesh, "proxy", sink);
+}
+
 }  // namespace
 
 bool is_quad_dominant(const PolygonMesh& mesh) {
@@ -256,6 +147,14 @@ bool is_quad_dominant(const PolygonMesh& mesh) {
 }
 
 int split_polygons(PolygonMesh& mesh) {
+  // A diagonal must not repeat an edge the mesh already has (it would be
+  // shared by three faces then): such corners are passed over.
+  std::set<std::pair<int, int>> edges;
+  auto edge_key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  for (const auto& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i)
+      edges.insert(edge_key(face[i], face[(i + 1) % face.size()]));
+  }
   int split = 0;
   std::vector<std::vector<int>> extra;
   for (auto& face : mesh.faces) {
@@ -263,39 +162,47 @@ int split_polygons(PolygonMesh& mesh) {
     ++split;
     while (face.size() > 4) {
       const std::size_t n = face.size();
-      std::size_t largest = 0;
-      double best = -1.0;
-      for (std::size_t i = 0; i < n; ++i) {
-        const double angle = corner_angle_at(mesh, face, i);
-        if (angle > best) {
-          best = angle;
-          largest = i;
-        }
-      }
-      std::vector<int> f = rotate_to(face, largest);  // the largest corner is f[0]
-      if (n == 5) {
-        // §4.1: the diagonal that best halves the largest corner.
-        const Vec3& p = mesh.positions[static_cast<std::size_t>(f[0])];
-        const Vec3 next = mesh.positions[static_cast<std::size_t>(f[1])] - p;
-        const Vec3 prev = mesh.positions[static_cast<std::size_t>(f[4])] - p;
-        const Vec3 d2 = mesh.positions[static_cast<std::size_t>(f[2])] - p;
-        const Vec3 d3 = mesh.positions[static_cast<std::size_t>(f[3])] - p;
-        const double imbalance2 = std::abs(angle_between(next, d2) - angle_between(d2, prev));
-        const double imbalance3 = std::abs(angle_between(next, d3) - angle_between(d3, prev));
-        if (imbalance2 <= imbalance3) {
-          extra.push_back({f[0], f[1], f[2]});
-          face = {f[0], f[2], f[3], f[4]};
+      std::vector<std::pair<double, std::size_t>> corners;
+      for (std::size_t i = 0; i < n; ++i) corners.emplace_back(-corner_angle_at(mesh, face, i), i);
+      std::stable_sort(corners.begin(), corners.end());
+      bool done = false;
+      for (const auto& [negative_angle, largest] : corners) {
+        std::vector<int> f = rotate_to(face, largest);  // the largest corner is f[0]
+        if (n == 5) {
+          // §4.1: the diagonal that best halves the largest corner.
+          const Vec3& p = mesh.positions[static_cast<std::size_t>(f[0])];
+          const Vec3 next = mesh.positions[static_cast<std::size_t>(f[1])] - p;
+          const Vec3 prev = mesh.positions[static_cast<std::size_t>(f[4])] - p;
+          const Vec3 d2 = mesh.positions[static_cast<std::size_t>(f[2])] - p;
+          const Vec3 d3 = mesh.positions[static_cast<std::size_t>(f[3])] - p;
+          const double imbalance2 = std::abs(angle_between(next, d2) - angle_between(d2, prev));
+          const double imbalance3 = std::abs(angle_between(next, d3) - angle_between(d3, prev));
+          const bool free2 = !edges.count(edge_key(f[0], f[2]));
+          const bool free3 = !edges.count(edge_key(f[0], f[3]));
+          if (free2 && (imbalance2 <= imbalance3 || !free3)) {
+            extra.push_back({f[0], f[1], f[2]});
+            face = {f[0], f[2], f[3], f[4]};
+            edges.insert(edge_key(f[0], f[2]));
+          } else if (free3) {
+            extra.push_back({f[0], f[3], f[4]});
+            face = {f[0], f[1], f[2], f[3]};
+            edges.insert(edge_key(f[0], f[3]));
+          } else {
+            continue;
+          }
         } else {
-          extra.push_back({f[0], f[3], f[4]});
-          face = {f[0], f[1], f[2], f[3]};
+          // Cut a quad off the largest corner; a hexagon becomes two quads.
+          if (edges.count(edge_key(f[0], f[3]))) continue;
+          extra.push_back({f[0], f[1], f[2], f[3]});
+          edges.insert(edge_key(f[0], f[3]));
+          std::vector<int> rest = {f[0]};
+          rest.insert(rest.end(), f.begin() + 3, f.end());
+          face = std::move(rest);
         }
-      } else {
-        // Cut a quad off the largest corner; a hexagon becomes two quads.
-        extra.push_back({f[0], f[1], f[2], f[3]});
-        std::vector<int> rest = {f[0]};
-        rest.insert(rest.end(), f.begin() + 3, f.end());
-        face = std::move(rest);
+        done = true;
+        break;
       }
+      if (!done) break;  // no free diagonal: left for the caller's check
     }
   }
   for (auto& f : extra) mesh.faces.push_back(std::move(f));
@@ -322,10 +229,33 @@ ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params) {
     const double area = total_area(input);
     result.edge_mm = params.proxy_edge_mm > 0.0 ? params.proxy_edge_mm
                                                 : std::sqrt(area / std::max(1, params.auto_faces));
-    result.mesh = decimate(input, result.edge_mm);
-    result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
+    RemeshParams remesh;
+    remesh.edge_mm = result.edge_mm;
+    remesh.orientation_iterations = params.field_iterations;
+    remesh.position_iterations = params.position_iterations;
+    RemeshStats stats;
+    auto extracted = field_aligned_remesh(input, remesh, stats);
+    result.samples = stats.samples;
+    if (extracted && is_quad_dominant(*extracted)) {
+      result.method = "instant-meshes";
+      result.mesh = std::move(*extracted);
+    } else {
+      result.method = "paired";
+      result.remesh_failure = extracted ? "extracted mesh is not quad-dominant" : stats.failure;
+      result.mesh = resample(input, 0.8 * result.edge_mm, 0.8);
+      result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
+    }
   }
   result.polygons_split = split_polygons(result.mesh);
+  if (result.method == "instant-meshes" && !is_valid_proxy(result.mesh)) {
+    result.method = "paired";
+    result.remesh_failure =
+        "splitting the extracted polygons left a face of more than 4 corners "
+        "or a non-manifold edge";
+    result.mesh = resample(input, 0.8 * result.edge_mm, 0.8);
+    result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
+    result.polygons_split = 0;
+  }
   return result;
 }
 

@@ -22,7 +22,8 @@ struct ProxyParams {
   // gives about `auto_faces` quads.
   double proxy_edge_mm = 0.0;
   int auto_faces = 3000;
-  int field_iterations = 100;  // orientation-field smoothing sweeps
+  int field_iterations = 100;     // orientation-field smoothing sweeps
+  int position_iterations = 100;  // position-field smoothing sweeps
 };
 
 struct ProxyResult {
@@ -31,6 +32,12 @@ struct ProxyResult {
   double edge_mm = 0.0;  // the target edge length used (remeshed), else the mean edge length
   int polygons_split = 0;
   int triangles_paired = 0;
+  // "input" (quad-dominant, kept), "instant-meshes" (field-aligned
+  // extraction), or "paired" (the extraction failed; stats say why, and
+  // triangles of the resampled surface were paired along the field instead).
+  std::string method = "input";
+  std::string remesh_failure;
+  int samples = 0;
 };
 
 // More than half of the faces are quads.

@@ -32,6 +32,7 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
   double scale = 1.0;
   double proxy_edge_mm = 0.0;
   std::uint64_t seed = 1;
+  int picture_px = 600;
   planner::CutParams params;
   po::options_description options("options");
   options.add_options()("garment", po::value<std::string>(&input)->required(),
@@ -48,6 +49,8 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
       "proxy-edge-mm", po::value<double>(&proxy_edge_mm)->default_value(0.0),
       "edge length of the remeshed proxy for triangle input (0: about 3000 quads)")(
       "no-pictures", "do not draw cuts-3d.png and layout-2d.png")(
+      "picture-px", po::value<int>(&picture_px)->default_value(600),
+      "size of one 3D view in cuts-3d.png (2x2 views); layout-2d.png is 5/3 of it")(
       "format", po::value<std::string>(&format_name)->default_value("text"),
       "diagnostics as text (stderr) or json (stdout)")("json", "same as --format json")(
       "quiet,q", "print nothing on success");
@@ -69,6 +72,10 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
   }
   if (!(scale > 0.0) || !std::isfinite(scale)) {
     context.err << "wearknit cut: --scale must be a positive number\n";
+    return kExitUsage;
+  }
+  if (picture_px < 50 || picture_px > 4000) {
+    context.err << "wearknit cut: --picture-px must be between 50 and 4000\n";
     return kExitUsage;
   }
   if (!(proxy_edge_mm >= 0.0) || params.cs < 0.0 || params.co < 0.0) {
@@ -101,6 +108,8 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
   report.proxy_edge_mm = proxy.edge_mm;
   report.polygons_split = proxy.polygons_split;
   report.triangles_paired = proxy.triangles_paired;
+  report.proxy_method = proxy.method;
+  report.remesh_failure = proxy.remesh_failure;
   report.proxy_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
@@ -116,10 +125,11 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
 
   std::string failure = planner::write_cut_result(output, cut, report);
   if (failure.empty() && values.count("no-pictures") == 0) {
-    failure = planner::draw_cuts_3d(cut, (std::filesystem::path(output) / "cuts-3d.png").string());
+    failure = planner::draw_cuts_3d(cut, (std::filesystem::path(output) / "cuts-3d.png").string(),
+                                    picture_px);
     if (failure.empty()) {
-      failure =
-          planner::draw_layout_2d(cut, (std::filesystem::path(output) / "layout-2d.png").string());
+      failure = planner::draw_layout_2d(
+          cut, (std::filesystem::path(output) / "layout-2d.png").string(), picture_px * 5 / 3);
     }
   }
   if (!failure.empty()) {
@@ -131,7 +141,9 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
     context.out << std::fixed << std::setprecision(1) << input << ": " << report.input_size_mm.x()
                 << " x " << report.input_size_mm.y() << " x " << report.input_size_mm.z()
                 << " mm; proxy " << cut.proxy.num_faces() << " faces"
-                << (proxy.remeshed ? " (remeshed)" : " (input as is)") << "\n"
+                << (proxy.remeshed ? " (remeshed: " + proxy.method + ")"
+                                   : std::string(" (input as is)"))
+                << "\n"
                 << "cut: " << s.irregular_vertices << " irregular vertices, " << s.cut_edges
                 << " cut edges in " << s.arcs << " arcs, " << s.cut_length_mm << " mm, "
                 << s.overlapping_faces << " overlapping faces, " << std::setprecision(3)

@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "planner/mesh_io.hpp"
 #include "tests/test_support.hpp"
 
 namespace planner {
@@ -41,7 +42,8 @@ TEST(CutCliTest, WritesTheCutFolder) {
 
 TEST(CutCliTest, BadMeshExitsOneNamingTheElementAndWritesNothing) {
   const auto dir = make_temp_dir("cut_cli_bad");
-  write_file(dir / "bowtie.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n");
+  write_file(dir / "bowtie.obj",
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n");
   const auto result =
       run_wearknit("cut " + (dir / "bowtie.obj").string() + " -o " + (dir / "out").string());
   EXPECT_EQ(result.exit_code, 1);
@@ -50,6 +52,51 @@ TEST(CutCliTest, BadMeshExitsOneNamingTheElementAndWritesNothing) {
                             "there (a pinch point); split the vertex or connect the sheets\n");
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));
   std::filesystem::remove_all(dir);
+}
+
+TEST(CutCliTest, TriangleInputIsRemeshedAtTheTargetEdgeLength) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const auto dir = make_temp_dir("cut_cli_tri");
+  const auto result =
+      run_wearknit("cut " + (shared / "meshes" / "half-torus.obj").string() + " -o " +
+                   (dir / "out").string() + " --proxy-edge-mm 0.12 --no-pictures -q");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.out, "");
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "cuts-3d.png"));
+  const auto report = nlohmann::json::parse(read_file(dir / "out" / "report.json"));
+  EXPECT_EQ(report["proxy"]["remeshed"], true);
+  EXPECT_EQ(report["proxy"]["method"], "instant-meshes");
+  EXPECT_EQ(report["proxy"]["edge_mm"], 0.12);
+  EXPECT_EQ(report["disc"]["euler_characteristic"], 1);
+  EXPECT_EQ(report["disc"]["boundary_loops"], 1);
+  // Mean edge of the proxy near the target: within 40 %.
+  knitout::DiagnosticSink sink;
+  const auto proxy = planner::read_polygon_soup((dir / "out" / "proxy.obj").string(), sink);
+  ASSERT_TRUE(proxy.has_value());
+  double total = 0;
+  int count = 0;
+  for (const auto& face : proxy->faces) {
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const auto& a = proxy->positions[static_cast<std::size_t>(face[i])];
+      const auto& b = proxy->positions[static_cast<std::size_t>(face[(i + 1) % face.size()])];
+      if (face.size() == 4) {
+        total += (a - b).norm();
+        ++count;
+      }
+    }
+  }
+  ASSERT_GT(count, 0);
+  EXPECT_NEAR(total / count, 0.12, 0.12 * 0.4);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CutCliTest, JsonDiagnosticsGoToStdout) {
+  const auto result = run_wearknit("cut /nonexistent/x.obj -o out --json");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.err, "");
+  EXPECT_EQ(result.out,
+            "[\n  {\"file\": \"/nonexistent/x.obj\", \"line\": 0, \"column\": 0, \"severity\": "
+            "\"error\", \"code\": \"P001\", \"message\": \"cannot open file\"}\n]\n");
 }
 
 TEST(CutCliTest, UsageErrorsExitTwo) {

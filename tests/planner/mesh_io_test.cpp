@@ -61,7 +61,8 @@ TEST(MeshIoTest, RejectsNonManifoldEdgeNamingItsFaces) {
 
 TEST(MeshIoTest, RejectsPinchedVertex) {
   // Two triangles touching at vertex 1 only: a bow tie.
-  const auto result = check_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n");
+  const auto result =
+      check_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n");
   ASSERT_FALSE(result.ok);
   ASSERT_EQ(result.messages.size(), 1u);
   EXPECT_EQ(result.messages[0],
@@ -125,7 +126,8 @@ TEST(MeshIoTest, CapsMessagesPerKind) {
 
 TEST(MeshIoTest, ReadsOffAndConvertsUnits) {
   const auto dir = wearknit::test::make_temp_dir("mesh_io");
-  wearknit::test::write_file(dir / "quad.off", "OFF\n4 1 0\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n4 0 1 2 3\n");
+  wearknit::test::write_file(dir / "quad.off",
+                             "OFF\n4 1 0\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n4 0 1 2 3\n");
   knitout::DiagnosticSink sink;
   auto mesh = load_mesh((dir / "quad.off").string(), {*mm_per_unit("cm"), 2.0}, sink);
   ASSERT_TRUE(mesh.has_value()) << knitout::format(sink.diagnostics().at(0));

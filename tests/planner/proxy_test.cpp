@@ -42,7 +42,8 @@ TEST(ProxyTest, QuadsAndTrianglesAreNotSplit) {
 TEST(ProxyTest, HexagonBecomesTwoQuadsAndHeptagonQuadPlusPentagonSplit) {
   PolygonMesh hexagon;
   const double pi = std::acos(-1.0);
-  for (int i = 0; i < 6; ++i) hexagon.positions.emplace_back(std::cos(pi * i / 3), std::sin(pi * i / 3), 0);
+  for (int i = 0; i < 6; ++i)
+    hexagon.positions.emplace_back(std::cos(pi * i / 3), std::sin(pi * i / 3), 0);
   hexagon.faces = {{0, 1, 2, 3, 4, 5}};
   split_polygons(hexagon);
   ASSERT_EQ(hexagon.faces.size(), 2u);
@@ -50,7 +51,8 @@ TEST(ProxyTest, HexagonBecomesTwoQuadsAndHeptagonQuadPlusPentagonSplit) {
   EXPECT_EQ(hexagon.faces[1].size(), 4u);
 
   PolygonMesh heptagon;
-  for (int i = 0; i < 7; ++i) heptagon.positions.emplace_back(std::cos(2 * pi * i / 7), std::sin(2 * pi * i / 7), 0);
+  for (int i = 0; i < 7; ++i)
+    heptagon.positions.emplace_back(std::cos(2 * pi * i / 7), std::sin(2 * pi * i / 7), 0);
   heptagon.faces = {{0, 1, 2, 3, 4, 5, 6}};
   split_polygons(heptagon);
   ASSERT_EQ(heptagon.faces.size(), 3u);  // quad + (pentagon -> quad + triangle)

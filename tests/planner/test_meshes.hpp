@@ -15,7 +15,8 @@ inline PolygonMesh grid(int n, int m) {
   }
   auto id = [&](int i, int j) { return j * (n + 1) + i; };
   for (int j = 0; j < m; ++j) {
-    for (int i = 0; i < n; ++i) mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    for (int i = 0; i < n; ++i)
+      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
   }
   return mesh;
 }
@@ -34,7 +35,8 @@ inline PolygonMesh torus(int n, int m, double big = 3.0, double small = 1.0) {
   }
   auto id = [&](int i, int j) { return ((j + m) % m) * n + (i + n) % n; };
   for (int j = 0; j < m; ++j) {
-    for (int i = 0; i < n; ++i) mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    for (int i = 0; i < n; ++i)
+      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
   }
   return mesh;
 }
@@ -54,15 +56,14 @@ inline PolygonMesh cube(int k) {
   const Vec3 X = Vec3::UnitX(), Y = Vec3::UnitY(), Z = Vec3::UnitZ();
   const struct {
     Vec3 o, a, b;
-  } sides[6] = {{Vec3(0, 0, 0), Y, X},         {Vec3(0, 0, k), X, Y},
-                {Vec3(0, 0, 0), X, Z},         {Vec3(0, k, 0), Z, X},
-                {Vec3(0, 0, 0), Z, Y},         {Vec3(k, 0, 0), Y, Z}};
+  } sides[6] = {{Vec3(0, 0, 0), Y, X}, {Vec3(0, 0, k), X, Y}, {Vec3(0, 0, 0), X, Z},
+                {Vec3(0, k, 0), Z, X}, {Vec3(0, 0, 0), Z, Y}, {Vec3(k, 0, 0), Y, Z}};
   for (const auto& s : sides) {
     for (int j = 0; j < k; ++j) {
       for (int i = 0; i < k; ++i) {
-        mesh.faces.push_back({vertex(s.o + s.a * i + s.b * j), vertex(s.o + s.a * (i + 1) + s.b * j),
-                              vertex(s.o + s.a * (i + 1) + s.b * (j + 1)),
-                              vertex(s.o + s.a * i + s.b * (j + 1))});
+        mesh.faces.push_back(
+            {vertex(s.o + s.a * i + s.b * j), vertex(s.o + s.a * (i + 1) + s.b * j),
+             vertex(s.o + s.a * (i + 1) + s.b * (j + 1)), vertex(s.o + s.a * i + s.b * (j + 1))});
       }
     }
   }

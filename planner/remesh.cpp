@@ -1,0 +1,575 @@
+#include "planner/remesh.hpp"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModEdgeLengthT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "knitout/diagnostic.hpp"
+#include "planner/mesh_io.hpp"
+
+namespace planner {
+
+namespace {
+
+std::size_t at(int i) {
+  return static_cast<std::size_t>(i);
+}
+
+struct TriTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  VertexAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
+  EdgeAttributes(OpenMesh::Attributes::Status);
+  FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
+  HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
+};
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<TriTraits>;
+
+// Shortest edges collapse first until none is shorter than `target`; normal
+// flips are refused and OpenMesh's link condition keeps the topology.
+PolygonMesh decimate(const PolygonMesh& input, double target) {
+  TriMesh tri;
+  std::vector<TriMesh::VertexHandle> handles;
+  handles.reserve(input.positions.size());
+  for (const Vec3& p : input.positions) {
+    handles.push_back(tri.add_vertex(TriMesh::Point(p.x(), p.y(), p.z())));
+  }
+  for (const auto& face : input.faces) {
+    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+      const auto fh = tri.add_face(handles[static_cast<std::size_t>(face[0])],
+                                   handles[static_cast<std::size_t>(face[i])],
+                                   handles[static_cast<std::size_t>(face[i + 1])]);
+      if (!fh.is_valid()) throw std::logic_error("decimate: checked mesh rejected by OpenMesh");
+    }
+  }
+  tri.update_face_normals();
+  tri.update_vertex_normals();
+  {
+    using Decimater = OpenMesh::Decimater::DecimaterT<TriMesh>;
+    using EdgeLength = OpenMesh::Decimater::ModEdgeLengthT<TriMesh>::Handle;
+    using NormalFlipping = OpenMesh::Decimater::ModNormalFlippingT<TriMesh>::Handle;
+    Decimater decimater(tri);
+    EdgeLength edge_length;
+    NormalFlipping normal_flipping;
+    decimater.add(edge_length);
+    decimater.add(normal_flipping);
+    decimater.module(edge_length).set_edge_length(target);
+    decimater.module(edge_length).set_binary(false);
+    decimater.module(normal_flipping).set_max_normal_deviation(60.0);
+    decimater.initialize();
+    decimater.decimate();
+  }
+  tri.garbage_collection();
+  PolygonMesh out;
+  out.positions.reserve(tri.n_vertices());
+  for (const auto vh : tri.vertices()) {
+    const auto& p = tri.point(vh);
+    out.positions.emplace_back(p[0], p[1], p[2]);
+  }
+  for (const auto fh : tri.faces()) {
+    std::vector<int> face;
+    for (const auto vh : tri.fv_range(fh)) face.push_back(vh.idx());
+    out.faces.push_back(std::move(face));
+  }
+  return out;
+}
+
+double mean_edge_length(const PolygonMesh& mesh) {
+  double total = 0.0;
+  std::size_t count = 0;
+  for (const auto& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      total +=
+          (mesh.positions[at(face[(i + 1) % face.size()])] - mesh.positions[at(face[i])]).norm();
+      ++count;
+    }
+  }
+  return count == 0 ? 0.0 : total / static_cast<double>(count);
+}
+
+// 1-to-4 midpoint subdivision of a triangle mesh (positions unchanged).
+PolygonMesh subdivide(const PolygonMesh& mesh) {
+  PolygonMesh out;
+  out.positions = mesh.positions;
+  std::map<std::pair<int, int>, int> midpoint;
+  auto mid = [&](int a, int b) {
+    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+    auto it = midpoint.find(key);
+    if (it != midpoint.end()) return it->second;
+    out.positions.push_back(0.5 * (mesh.positions[at(a)] + mesh.positions[at(b)]));
+    const int id = static_cast<int>(out.positions.size()) - 1;
+    midpoint.emplace(key, id);
+    return id;
+  };
+  for (const auto& f : mesh.faces) {
+    const int ab = mid(f[0], f[1]);
+    const int bc = mid(f[1], f[2]);
+    const int ca = mid(f[2], f[0]);
+    out.faces.push_back({f[0], ab, ca});
+    out.faces.push_back({ab, f[1], bc});
+    out.faces.push_back({ca, bc, f[2]});
+    out.faces.push_back({ab, bc, ca});
+  }
+  return out;
+}
+
+}  // namespace
+
+PolygonMesh resample(const PolygonMesh& input, double target_mm, double keep_above) {
+  PolygonMesh tri;
+  tri.positions = input.positions;
+  for (const auto& face : input.faces) {
+    for (std::size_t i = 1; i + 1 < face.size(); ++i)
+      tri.faces.push_back({face[0], face[i], face[i + 1]});
+  }
+  // Coarse input is refined; input within a factor 2 of the target is used
+  // as it is; only a much finer one is decimated (the decimater is the
+  // slowest step, so it is kept for the meshes that need it).
+  while (mean_edge_length(tri) > 2.0 * target_mm && tri.faces.size() < 4000000)
+    tri = subdivide(tri);
+  if (mean_edge_length(tri) >= keep_above * target_mm) return tri;
+  PolygonMesh decimated = decimate(tri, target_mm);
+  knitout::DiagnosticSink sink;
+  // OpenMesh keeps the topology; should a collapse still leave a fold, the
+  // finer mesh is the safe answer.
+  if (!check_mesh(decimated, "resample", sink)) return tri;
+  return decimated;
+}
+
+// The representative of the 4-fold direction (o, n x o, -o, -n x o) closest to `target`.
+Vec3 closest_representative(const Vec3& o, const Vec3& n, const Vec3& target) {
+  const Vec3 q = n.cross(o);
+  const double a = o.dot(target);
+  const double b = q.dot(target);
+  if (std::abs(a) >= std::abs(b)) return a >= 0 ? o : Vec3(-o);
+  return b >= 0 ? q : Vec3(-q);
+}
+
+// Extrinsic 4-RoSy smoothing (Instant Meshes, Jakob et al. 2015, §3.1):
+// every vertex moves its direction towards the sum of its neighbours'
+// closest representatives, projected onto its tangent plane.
+std::vector<Vec3> orientation_field(const HalfedgeMesh& mesh, std::vector<Vec3>& normals,
+                                    int iterations) {
+  const int nv = mesh.num_vertices();
+  normals.assign(static_cast<std::size_t>(nv), Vec3::Zero());
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Vec3 n = mesh.face_normal(f);
+    const int start = mesh.face_start(f);
+    for (int i = 0; i < mesh.degree(f); ++i)
+      normals[static_cast<std::size_t>(mesh.from(start + i))] += n;
+  }
+  std::vector<Vec3> field(static_cast<std::size_t>(nv));
+  for (int v = 0; v < nv; ++v) {
+    Vec3& n = normals[static_cast<std::size_t>(v)];
+    if (n.norm() > 0)
+      n.normalize();
+    else
+      n = Vec3::UnitZ();
+    // A fixed start (no randomness): the axis least aligned with the normal.
+    Vec3 axis = Vec3::UnitX();
+    if (std::abs(n.x()) > 0.8) axis = Vec3::UnitY();
+    field[static_cast<std::size_t>(v)] = (axis - n * n.dot(axis)).normalized();
+  }
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(nv));
+  for (int h = 0; h < mesh.num_halfedges(); ++h) {
+    neighbours[static_cast<std::size_t>(mesh.from(h))].push_back(mesh.to(h));
+    if (mesh.twin(h) < 0) neighbours[static_cast<std::size_t>(mesh.to(h))].push_back(mesh.from(h));
+  }
+  for (int it = 0; it < iterations; ++it) {
+    for (int v = 0; v < nv; ++v) {
+      const Vec3& n = normals[static_cast<std::size_t>(v)];
+      Vec3 sum = field[static_cast<std::size_t>(v)];
+      double weight = 1.0;
+      for (int w : neighbours[static_cast<std::size_t>(v)]) {
+        Vec3 r = closest_representative(field[static_cast<std::size_t>(w)],
+                                        normals[static_cast<std::size_t>(w)], sum / weight);
+        sum += r;
+        weight += 1.0;
+      }
+      Vec3 t = sum - n * n.dot(sum);
+      if (t.norm() > 1e-12) field[static_cast<std::size_t>(v)] = t.normalized();
+    }
+  }
+  return field;
+}
+
+namespace {
+
+// The point between p0 and p1 closest to both tangent planes (Instant
+// Meshes' middle_point): where the lattices of two neighbours are compared.
+Vec3 middle_point(const Vec3& p0, const Vec3& n0, const Vec3& p1, const Vec3& n1) {
+  const double n0p0 = n0.dot(p0), n0p1 = n0.dot(p1), n1p0 = n1.dot(p0), n1p1 = n1.dot(p1);
+  const double n0n1 = n0.dot(n1);
+  const double denom = 1.0 / (1.0 - n0n1 * n0n1 + 1e-4);
+  const double l0 = 2.0 * (n0p1 - n0p0 - n0n1 * (n1p0 - n1p1)) * denom;
+  const double l1 = 2.0 * (n1p0 - n1p1 - n0n1 * (n0p1 - n0p0)) * denom;
+  return 0.5 * (p0 + p1) - 0.25 * (n0 * l0 + n1 * l1);
+}
+
+// Lattice (origin o, axes q and n x q, spacing s): the point at or below
+// `target` in both axes.
+Vec3 lattice_floor(const Vec3& o, const Vec3& q, const Vec3& n, const Vec3& target, double s) {
+  const Vec3 t = n.cross(q);
+  const Vec3 d = target - o;
+  return o + q * std::floor(q.dot(d) / s) * s + t * std::floor(t.dot(d) / s) * s;
+}
+
+Vec3 lattice_round(const Vec3& o, const Vec3& q, const Vec3& n, const Vec3& target, double s) {
+  const Vec3 t = n.cross(q);
+  const Vec3 d = target - o;
+  return o + q * std::round(q.dot(d) / s) * s + t * std::round(t.dot(d) / s) * s;
+}
+
+// The closest pair of lattice points of two neighbours near their middle
+// (Instant Meshes' compat_position_extrinsic_4); q1 already matches q0.
+std::pair<Vec3, Vec3> compatible_positions(const Vec3& p0, const Vec3& n0, const Vec3& q0,
+                                           const Vec3& o0, const Vec3& p1, const Vec3& n1,
+                                           const Vec3& q1, const Vec3& o1, double s) {
+  const Vec3 t0 = n0.cross(q0);
+  const Vec3 t1 = n1.cross(q1);
+  const Vec3 middle = middle_point(p0, n0, p1, n1);
+  const Vec3 f0 = lattice_floor(o0, q0, n0, middle, s);
+  const Vec3 f1 = lattice_floor(o1, q1, n1, middle, s);
+  double best = std::numeric_limits<double>::infinity();
+  std::pair<Vec3, Vec3> result{f0, f1};
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 a = f0 + (q0 * (i & 1) + t0 * ((i & 2) >> 1)) * s;
+    for (int j = 0; j < 4; ++j) {
+      const Vec3 b = f1 + (q1 * (j & 1) + t1 * ((j & 2) >> 1)) * s;
+      const double d = (a - b).squaredNorm();
+      if (d < best) {
+        best = d;
+        result = {a, b};
+      }
+    }
+  }
+  return result;
+}
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int x) {
+    while (parent[at(x)] != x) {
+      parent[at(x)] = parent[at(parent[at(x)])];
+      x = parent[at(x)];
+    }
+    return x;
+  }
+  void unite(int a, int b) { parent[at(find(a))] = find(b); }
+};
+
+// A vertex whose faces form several fans (sheets touching at a point) gets
+// one copy per fan, so the surface becomes a manifold there.
+void split_pinched_vertices(PolygonMesh& mesh) {
+  std::vector<int> start(mesh.faces.size() + 1, 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    start[f + 1] = start[f] + static_cast<int>(mesh.faces[f].size());
+  }
+  UnionFind corners(at(start.back()));
+  std::map<std::pair<int, int>, int> first;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    const std::size_t n = face.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const int c = start[f] + static_cast<int>(i);
+      for (const int w : {face[(i + 1) % n], face[(i + n - 1) % n]}) {
+        auto [it, inserted] = first.emplace(std::make_pair(face[i], w), c);
+        if (!inserted) corners.unite(c, it->second);
+      }
+    }
+  }
+  std::vector<int> owner(mesh.positions.size(), -1);  // fan root that keeps the original vertex
+  std::map<int, int> copy_of_root;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (std::size_t i = 0; i < mesh.faces[f].size(); ++i) {
+      int& v = mesh.faces[f][i];
+      const int root = corners.find(start[f] + static_cast<int>(i));
+      if (owner[at(v)] < 0) owner[at(v)] = root;
+      if (owner[at(v)] == root) continue;
+      auto [it, inserted] = copy_of_root.emplace(root, static_cast<int>(mesh.positions.size()));
+      if (inserted) mesh.positions.push_back(mesh.positions[at(v)]);
+      v = it->second;
+    }
+  }
+}
+
+// Crumbs of a few faces left where the lattice folded are dropped; a
+// second big component is kept (and fails the topology check).
+void keep_largest_component(PolygonMesh& mesh) {
+  UnionFind vertices(mesh.positions.size());
+  for (const auto& face : mesh.faces) {
+    for (std::size_t i = 1; i < face.size(); ++i) vertices.unite(face[0], face[i]);
+  }
+  std::map<int, std::size_t> size;
+  for (const auto& face : mesh.faces) ++size[vertices.find(face[0])];
+  if (size.size() <= 1) return;
+  const auto largest = std::max_element(size.begin(), size.end(), [](const auto& a, const auto& b) {
+                         return a.second < b.second;
+                       })->first;
+  std::size_t others = 0;
+  for (const auto& [root, count] : size) others += root == largest ? 0 : count;
+  if (others * 50 > mesh.faces.size()) return;
+  std::vector<std::vector<int>> kept;
+  for (auto& face : mesh.faces) {
+    if (vertices.find(face[0]) == largest) kept.push_back(std::move(face));
+  }
+  mesh.faces = std::move(kept);
+  std::vector<int> index(mesh.positions.size(), -1);
+  std::vector<Vec3> positions;
+  for (auto& face : mesh.faces) {
+    for (int& v : face) {
+      if (index[at(v)] < 0) {
+        index[at(v)] = static_cast<int>(positions.size());
+        positions.push_back(mesh.positions[at(v)]);
+      }
+      v = index[at(v)];
+    }
+  }
+  mesh.positions = std::move(positions);
+}
+
+}  // namespace
+
+std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input,
+                                                const RemeshParams& params, RemeshStats& stats) {
+  const double s = params.edge_mm;
+  // Samples about half a lattice step apart, so every lattice cell holds some.
+  const HalfedgeMesh mesh(resample(input, params.sample_ratio * s));
+  const int nv = mesh.num_vertices();
+  stats.samples = nv;
+  std::vector<Vec3> normals;
+  std::vector<Vec3> q = orientation_field(mesh, normals, params.orientation_iterations);
+  std::vector<std::vector<int>> neighbours(at(nv));
+  for (int h = 0; h < mesh.num_halfedges(); ++h) {
+    neighbours[at(mesh.from(h))].push_back(mesh.to(h));
+    if (mesh.twin(h) < 0) neighbours[at(mesh.to(h))].push_back(mesh.from(h));
+  }
+  // 4-PoSy smoothing (Instant Meshes §3.2, extrinsic): each lattice origin
+  // moves to the average of its neighbours' compatible lattice points, then
+  // snaps to the lattice point nearest its own sample.
+  std::vector<Vec3> origin(at(nv));
+  for (int v = 0; v < nv; ++v) origin[at(v)] = mesh.position(v);
+  for (int it = 0; it < params.position_iterations; ++it) {
+    for (int v = 0; v < nv; ++v) {
+      const Vec3& p = mesh.position(v);
+      const Vec3& n = normals[at(v)];
+      const Vec3& qv = q[at(v)];
+      Vec3 sum = origin[at(v)];
+      double weight = 0.0;
+      for (int w : neighbours[at(v)]) {
+        const Vec3 qw = closest_representative(q[at(w)], normals[at(w)], qv);
+        const auto [a, b] = compatible_positions(p, n, qv, sum, mesh.position(w), normals[at(w)],
+                                                 qw, origin[at(w)], s);
+        sum = (a * weight + b) / (weight + 1.0);
+        weight += 1.0;
+        sum -= n * n.dot(sum - p);
+      }
+      origin[at(v)] = lattice_round(sum, qv, n, p, s);
+    }
+  }
+  // Extraction: integer lattice offset along every sample edge.
+  UnionFind collapse(at(nv));
+  std::vector<std::pair<int, int>> unit_edges;
+  for (int h = 0; h < mesh.num_halfedges(); ++h) {
+    const int i = mesh.from(h);
+    const int j = mesh.to(h);
+    if (mesh.twin(h) >= 0 && i > j) continue;
+    const Vec3& ni = normals[at(i)];
+    const Vec3& qi = q[at(i)];
+    const Vec3 qj = closest_representative(q[at(j)], normals[at(j)], qi);
+    const auto [a, b] =
+        compatible_positions(mesh.position(i), ni, qi, origin[at(i)], mesh.position(j),
+                             normals[at(j)], qj, origin[at(j)], s);
+    const Vec3 ti = ni.cross(qi);
+    const Vec3 tj = normals[at(j)].cross(qj);
+    const long di0 = std::lround(qi.dot(a - origin[at(i)]) / s);
+    const long di1 = std::lround(ti.dot(a - origin[at(i)]) / s);
+    const long dj0 = std::lround(qj.dot(b - origin[at(j)]) / s);
+    const long dj1 = std::lround(tj.dot(b - origin[at(j)]) / s);
+    const long du = di0 - dj0;
+    const long dv = di1 - dj1;
+    const long manhattan = std::labs(du) + std::labs(dv);
+    if (manhattan == 0)
+      collapse.unite(i, j);
+    else if (manhattan == 1)
+      unit_edges.emplace_back(i, j);
+  }
+  std::vector<int> cls(at(nv), -1);
+  std::vector<Vec3> position;
+  std::vector<Vec3> normal;
+  std::vector<Vec3> axis;
+  std::vector<int> members;
+  std::vector<bool> boundary;
+  for (int v = 0; v < nv; ++v) {
+    const int root = collapse.find(v);
+    if (cls[at(root)] < 0) {
+      cls[at(root)] = static_cast<int>(position.size());
+      position.push_back(Vec3::Zero());
+      normal.push_back(Vec3::Zero());
+      axis.push_back(q[at(v)]);
+      members.push_back(0);
+      boundary.push_back(false);
+    }
+    const int c = cls[at(root)];
+    cls[at(v)] = c;
+    position[at(c)] += origin[at(v)];
+    normal[at(c)] += normals[at(v)];
+    ++members[at(c)];
+    if (mesh.is_boundary_vertex(v)) boundary[at(c)] = true;
+  }
+  const int nc = static_cast<int>(position.size());
+  for (int c = 0; c < nc; ++c) {
+    position[at(c)] /= members[at(c)];
+    normal[at(c)].normalize();
+  }
+  std::vector<std::vector<int>> adjacent(at(nc));
+  for (const auto& [i, j] : unit_edges) {
+    const int a = cls[at(i)];
+    const int b = cls[at(j)];
+    if (a == b) continue;
+    adjacent[at(a)].push_back(b);
+    adjacent[at(b)].push_back(a);
+  }
+  for (auto& list : adjacent) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  // Dangling edges bound no face: peel them off.
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int c = 0; c < nc; ++c) {
+      if (adjacent[at(c)].size() != 1) continue;
+      const int other = adjacent[at(c)][0];
+      adjacent[at(c)].clear();
+      auto& list = adjacent[at(other)];
+      list.erase(std::remove(list.begin(), list.end(), c), list.end());
+      changed = true;
+    }
+  }
+  // Neighbours in counter-clockwise order around each output vertex's normal.
+  for (int c = 0; c < nc; ++c) {
+    const Vec3& n = normal[at(c)];
+    const Vec3 x = (axis[at(c)] - n * n.dot(axis[at(c)])).normalized();
+    const Vec3 y = n.cross(x);
+    auto angle = [&](int o) {
+      const Vec3 d = position[at(o)] - position[at(c)];
+      return std::atan2(d.dot(y), d.dot(x));
+    };
+    std::sort(adjacent[at(c)].begin(), adjacent[at(c)].end(),
+              [&](int a, int b) { return angle(a) < angle(b); });
+  }
+  // A hole of an open surface is traced like a face along its rim; its
+  // centre lies in the opening, away from every sample of the surface.
+  auto is_hole = [&](const std::vector<int>& loop) {
+    bool touches_boundary = false;
+    Vec3 centre = Vec3::Zero();
+    for (int v : loop) {
+      touches_boundary = touches_boundary || boundary[at(v)];
+      centre += position[at(v)];
+    }
+    if (!touches_boundary) return false;
+    centre /= static_cast<double>(loop.size());
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int v = 0; v < nv; ++v)
+      nearest = std::min(nearest, (mesh.position(v) - centre).squaredNorm());
+    return std::sqrt(nearest) > 0.6 * s;
+  };
+  // Faces: from a -> b, turn to the neighbour of b just clockwise of a.
+  std::map<std::pair<int, int>, bool> used;
+  PolygonMesh out;
+  out.positions = position;
+  for (int a0 = 0; a0 < nc; ++a0) {
+    for (int b0 : adjacent[at(a0)]) {
+      if (used[{a0, b0}]) continue;
+      std::vector<int> face;
+      int a = a0;
+      int b = b0;
+      bool closed = false;
+      for (int steps = 0; steps < 64; ++steps) {
+        used[{a, b}] = true;
+        face.push_back(a);
+        const auto& list = adjacent[at(b)];
+        const auto it = std::find(list.begin(), list.end(), a);
+        const std::size_t k = static_cast<std::size_t>(it - list.begin());
+        const int next = list[(k + list.size() - 1) % list.size()];
+        a = b;
+        b = next;
+        if (a == a0 && b == b0) {
+          closed = true;
+          break;
+        }
+      }
+      if (!closed || face.size() < 3) continue;
+      // A walk that meets a vertex twice runs round an island or along a
+      // bridge: keep its simple loops, drop the two-corner spikes.
+      std::vector<std::vector<int>> loops;
+      {
+        std::vector<int> stack;
+        std::map<int, std::size_t> where;
+        for (int v : face) {
+          auto found = where.find(v);
+          if (found != where.end()) {
+            std::vector<int> loop(stack.begin() + static_cast<std::ptrdiff_t>(found->second),
+                                  stack.end());
+            for (std::size_t k = found->second + 1; k < stack.size(); ++k) where.erase(stack[k]);
+            stack.resize(found->second + 1);
+            if (loop.size() >= 3) loops.push_back(std::move(loop));
+          } else {
+            where[v] = stack.size();
+            stack.push_back(v);
+          }
+        }
+        if (stack.size() >= 3) loops.push_back(std::move(stack));
+      }
+      for (auto& loop : loops) {
+        if (!is_hole(loop)) out.faces.push_back(std::move(loop));
+      }
+      continue;
+      out.faces.push_back(std::move(face));
+    }
+  }
+  // Drop output vertices no face uses, and renumber.
+  std::vector<int> index(at(nc), -1);
+  PolygonMesh compact;
+  for (auto& face : out.faces) {
+    for (int& v : face) {
+      if (index[at(v)] < 0) {
+        index[at(v)] = static_cast<int>(compact.positions.size());
+        compact.positions.push_back(out.positions[at(v)]);
+      }
+      v = index[at(v)];
+    }
+  }
+  compact.faces = std::move(out.faces);
+  split_pinched_vertices(compact);
+  keep_largest_component(compact);
+  knitout::DiagnosticSink sink;
+  if (!check_mesh(compact, "remesh", sink)) {
+    stats.failure = "extracted mesh is not a clean surface: " + sink.diagnostics().front().message;
+    return std::nullopt;
+  }
+  const HalfedgeMesh result(compact);
+  const HalfedgeMesh source(input);
+  if (result.euler_characteristic() != source.euler_characteristic() ||
+      result.count_boundary_loops() != source.count_boundary_loops()) {
+    stats.failure = "extracted mesh has Euler characteristic " +
+                    std::to_string(result.euler_characteristic()) + " and " +
+                    std::to_string(result.count_boundary_loops()) + " boundary loops, the input " +
+                    std::to_string(source.euler_characteristic()) + " and " +
+                    std::to_string(source.count_boundary_loops());
+    return std::nullopt;
+  }
+  return compact;
+}
+
+}  // namespace planner

@@ -1,0 +1,53 @@
+// Field-aligned quad-dominant remeshing in the manner of Instant Meshes
+// (Jakob, Tarini, Panozzo, Sorkine-Hornung 2015): a 4-RoSy orientation
+// field and a 4-PoSy position field are smoothed on a dense sampling of the
+// surface, then the lattice is extracted: samples whose lattice points
+// coincide collapse into one output vertex, samples one lattice step apart
+// give an output edge, and faces are traced around the edges in their
+// angular order. proxy.hpp decides when to use it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "planner/mesh.hpp"
+
+namespace planner {
+
+// A triangle mesh of the checked surface `input` with edges about
+// `target_mm` long: polygons are fan-triangulated, a coarse mesh is
+// subdivided 1-to-4 while its mean edge exceeds 2 * target_mm; a mesh whose
+// mean edge is still below keep_above * target_mm is decimated (OpenMesh's
+// decimater, shortest edges first; its link condition keeps the topology,
+// normal flips are refused). The result is checked like any input.
+PolygonMesh resample(const PolygonMesh& input, double target_mm, double keep_above = 0.5);
+
+// Of the four directions o, n x o, -o, -n x o: the one closest to `target`.
+Vec3 closest_representative(const Vec3& o, const Vec3& n, const Vec3& target);
+
+// Smooth 4-RoSy orientation field per vertex (tangent unit vectors) and the
+// vertex normals it is tangent to; deterministic.
+std::vector<Vec3> orientation_field(const HalfedgeMesh& mesh, std::vector<Vec3>& normals,
+                                    int iterations);
+
+struct RemeshParams {
+  double edge_mm = 1.0;  // lattice spacing: the target edge length
+  int orientation_iterations = 150;
+  int position_iterations = 150;
+  double sample_ratio = 0.4;  // sample spacing as a fraction of edge_mm
+};
+
+struct RemeshStats {
+  int samples = 0;      // vertices of the sampled input the fields live on
+  std::string failure;  // why extraction gave no usable mesh (empty on success)
+};
+
+// A quad-dominant mesh of `input` (a checked surface; polygons are
+// triangulated) with the same Euler characteristic and number of boundary
+// loops, or nullopt (with stats.failure saying why) when the extraction did
+// not give one connected, consistently oriented manifold of that topology.
+std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input,
+                                                const RemeshParams& params, RemeshStats& stats);
+
+}  // namespace planner
