@@ -1,6 +1,9 @@
 // Stitch meshing of cut meshes of the shared test meshes (issue 8's "done
 // when"): each mesh is scaled to 100 mm along its longest side, cut (§4) and
-// remeshed (§6) at the default gauge.
+// remeshed (§6) at the default gauge. Only quad and quad-dominant inputs
+// (used as the cut stage's proxy as they are) keep this suite fast; the
+// triangle meshes, which the cut stage remeshes first, are covered by
+// docs/stitch-mesh.md's table.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -104,8 +107,7 @@ TEST_P(StitchMeshSharedTest, RulesOfThumbLeaveFewerUnstableShapings) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedTest,
-                         ::testing::Values("3torus-quad", "disc-quad", "split-1-2-open",
-                                           "sphere-qd", "torus-qd", "half-torus"),
+                         ::testing::Values("3torus-quad", "disc-quad", "sphere-qd", "torus-qd"),
                          test_name);
 
 class StitchMeshSharedValidTest : public ::testing::TestWithParam<std::string> {};
@@ -119,8 +121,8 @@ TEST_P(StitchMeshSharedValidTest, IsAValidDisc) {
 
 INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedValidTest,
                          ::testing::Values("bunny-qd", "eight-qd", "fertility-qd", "pipes-open-qd",
-                                           "rockerarm-qd", "teddy-quad", "chipped-torus",
-                                           "cactus-open", "half-torus-qd", "double-torus-qd"),
+                                           "rockerarm-qd", "teddy-quad", "half-torus-qd",
+                                           "double-torus-qd", "gargoyle-quad"),
                          test_name);
 
 }  // namespace
