@@ -199,20 +199,6 @@ std::string draw_stitch_mesh(const StitchMesh& mesh, const std::string& png_path
     }
     cairo_restore(cr);
   }
-  // Legend.
-  const std::array<FaceType, 4> types{FaceType::Knit, FaceType::Increase, FaceType::Decrease,
-                                      FaceType::ShortRow};
-  cairo_set_font_size(cr, 14);
-  for (std::size_t i = 0; i < types.size(); ++i) {
-    const std::array<double, 3> colour = type_colour(types[i]);
-    const double y = 10 + 20.0 * static_cast<double>(i);
-    cairo_rectangle(cr, 10, y, 14, 14);
-    cairo_set_source_rgb(cr, colour[0], colour[1], colour[2]);
-    cairo_fill(cr);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_move_to(cr, 30, y + 12);
-    cairo_show_text(cr, std::string(face_type_name(types[i])).c_str());
-  }
   cairo_destroy(cr);
   cairo_surface_flush(surface);
   const std::string failure = knitout::write_file_atomically(png_path, [&](std::ostream& out) {

@@ -21,8 +21,9 @@ LabelledDisc labelled_disc(const CutMesh& cut);
 void write_stitch_obj(std::ostream& out, const StitchMesh& mesh);
 
 // A picture of the stitch mesh from four sides, faces coloured by type
-// (knit grey, increase green, decrease blue, short row orange), course edges
-// thin, the boundary thick. Returns an empty string or what went wrong.
+// (knit grey, increase green, decrease blue, short row orange; no text, so no
+// font library is needed), course edges darker than wale edges, the boundary red. Returns an empty
+// string or what went wrong.
 std::string draw_stitch_mesh(const StitchMesh& mesh, const std::string& png_path,
                              int panel_px = 600);
 

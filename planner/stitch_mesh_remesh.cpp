@@ -849,8 +849,8 @@ struct Builder {
   bool split_folds(const std::string& where, std::vector<Chain> loop) {
     while (loop.front().side != Side::Low) std::rotate(loop.begin(), loop.begin() + 1, loop.end());
     std::vector<Chain> courses;
-    std::vector<Chain> sides;      // side chain after each course chain
-    std::vector<bool> has_side;    // a boundary side, or an edge made by an earlier split
+    std::vector<Chain> sides;    // side chain after each course chain
+    std::vector<bool> has_side;  // a boundary side, or an edge made by an earlier split
     for (Chain& c : loop) {
       if (c.side == Side::Wale) {
         if (courses.empty() || has_side.back()) return false;
