@@ -238,8 +238,8 @@ struct LibraryEntry {
 
 }  // namespace
 
-std::optional<StitchMesh> read_smobj(std::istream& in, const std::string& source,
-                                     knitout::DiagnosticSink& sink) {
+std::optional<StitchMesh> parse_smobj(std::istream& in, const std::string& source,
+                                      knitout::DiagnosticSink& sink) {
   StitchMesh mesh;
   std::vector<LibraryEntry> library;
   std::vector<std::size_t> types;

@@ -82,12 +82,12 @@ std::optional<FaceType> classify_roles(const std::vector<EdgeRole>& roles,
 // (std::logic_error).
 void write_smobj(std::ostream& out, const StitchMesh& mesh);
 
-// Reads what write_smobj writes (and any .smobj whose library uses the face
+// Reads what write_smobj writes, cut-arcs included (and any .smobj whose library uses the face
 // names knit, increase, decrease, short-row with -lN/+lN/yN edges). Problems
 // are diagnostics naming the line: P081 malformed line, P082 unknown face or
 // edge type in the library, P083 faces and types that disagree, P084 a mesh
 // that fails `check`. Returns nullopt when there was any error.
-std::optional<StitchMesh> read_smobj(std::istream& in, const std::string& source,
-                                     knitout::DiagnosticSink& sink);
+std::optional<StitchMesh> parse_smobj(std::istream& in, const std::string& source,
+                                      knitout::DiagnosticSink& sink);
 
 }  // namespace planner

@@ -28,7 +28,7 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
   EXPECT_TRUE(std::filesystem::exists(dir / "stitch-mesh.png"));
   std::istringstream smobj(read_file(dir / "stitch-mesh.smobj"));
   knitout::DiagnosticSink sink;
-  const auto mesh = planner::read_smobj(smobj, "stitch-mesh.smobj", sink);
+  const auto mesh = planner::parse_smobj(smobj, "stitch-mesh.smobj", sink);
   ASSERT_TRUE(mesh);
   EXPECT_DOUBLE_EQ(mesh->course_mm, 1.05);
   EXPECT_DOUBLE_EQ(mesh->wale_mm, 2.875);

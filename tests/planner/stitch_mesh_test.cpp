@@ -112,7 +112,7 @@ TEST(StitchMeshTest, SmobjRoundTripKeepsFacesTypesAndArcs) {
   EXPECT_NE(text.find("# arc 1/4 7\n"), std::string::npos);
   std::istringstream in(text);
   knitout::DiagnosticSink sink;
-  const std::optional<StitchMesh> back = read_smobj(in, "mesh.smobj", sink);
+  const std::optional<StitchMesh> back = parse_smobj(in, "mesh.smobj", sink);
   ASSERT_TRUE(back) << (sink.diagnostics().empty() ? "" : format(sink.diagnostics()[0]));
   EXPECT_TRUE(check(*back).empty());
   EXPECT_EQ(back->course_mm, 1.0);
@@ -138,7 +138,7 @@ TEST(StitchMeshTest, WriterRefusesAnInvalidMesh) {
 std::vector<std::string> read_errors(const std::string& text) {
   std::istringstream in(text);
   knitout::DiagnosticSink sink;
-  EXPECT_FALSE(read_smobj(in, "bad.smobj", sink));
+  EXPECT_FALSE(parse_smobj(in, "bad.smobj", sink));
   std::vector<std::string> lines;
   for (const knitout::Diagnostic& d : sink.diagnostics()) lines.push_back(format(d));
   return lines;
@@ -152,7 +152,7 @@ const char* kTwoKnits =
 TEST(StitchMeshTest, ReadsAMinimalSmobj) {
   std::istringstream in(kTwoKnits);
   knitout::DiagnosticSink sink;
-  const std::optional<StitchMesh> mesh = read_smobj(in, "ok.smobj", sink);
+  const std::optional<StitchMesh> mesh = parse_smobj(in, "ok.smobj", sink);
   ASSERT_TRUE(mesh);
   EXPECT_EQ(mesh->faces.size(), 2u);
   EXPECT_TRUE(check(*mesh).empty());
