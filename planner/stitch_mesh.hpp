@@ -13,9 +13,12 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "knitout/diagnostic.hpp"
 
 namespace planner {
 
@@ -62,11 +65,29 @@ struct StitchMesh {
 // of range, or parallel arrays of different lengths. Empty when valid.
 std::vector<std::string> check(const StitchMesh& mesh);
 
+// The face type that side roles (read cyclically) make, or nullopt when they
+// make none of the four. `first`, if given, receives the side a writer starts
+// the face at: its bottom-left course-in side.
+std::optional<FaceType> classify_roles(const std::vector<EdgeRole>& roles,
+                                       std::size_t* first = nullptr);
+
 // The textiles-lab .smobj text format: a face library (knit, increase,
 // decrease, short-row with their edge types: `l` loop (course) edges with
 // direction - in / + out, `y` yarn (wale) edges), vertices, faces, types, and
 // the `e` connections between faces. Arcs are kept in `# arc` comment lines
 // that other readers ignore.
+// Each face is written from its bottom-left course-in side (so vertex order
+// may be rotated relative to `mesh`); course_mm and wale_mm go in a
+// `# wearknit` comment line. A mesh that fails `check` is a programming error
+// (std::logic_error).
 void write_smobj(std::ostream& out, const StitchMesh& mesh);
+
+// Reads what write_smobj writes, cut-arcs included (and any .smobj whose library uses the face
+// names knit, increase, decrease, short-row with -lN/+lN/yN edges). Problems
+// are diagnostics naming the line: P081 malformed line, P082 unknown face or
+// edge type in the library, P083 faces and types that disagree, P084 a mesh
+// that fails `check`. Returns nullopt when there was any error.
+std::optional<StitchMesh> parse_smobj(std::istream& in, const std::string& source,
+                                      knitout::DiagnosticSink& sink);
 
 }  // namespace planner

@@ -42,6 +42,9 @@ const std::vector<Verb>& verbs() {
        "[--proxy-edge-mm L]",
        "cut a garment surface into one disc with consistent course/wale labels (paper §4)",
        run_cut},
+      {"stitch-mesh",
+       "stitch-mesh DIR [--gauge N] [--swatch SxR:WxH_MM | --stitch-mm CxW] [--no-picture]",
+       "remesh a cut folder into a stitch mesh of course x wale faces (paper §6)", run_stitch_mesh},
   };
   return kVerbs;
 }

@@ -72,5 +72,6 @@ int run_mock_device(const std::vector<std::string>& args, Context& context);
 // project's own readers (verb_mock_device.cpp).
 devices::JobCheckers project_job_checkers();
 int run_cut(const std::vector<std::string>& args, Context& context);
+int run_stitch_mesh(const std::vector<std::string>& args, Context& context);
 
 }  // namespace wearknit::cli

@@ -1,0 +1,1454 @@
+#include "planner/stitch_mesh_remesh.hpp"
+
+#include <Eigen/Geometry>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <stdexcept>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+namespace planner {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+std::size_t at(int i) {
+  return static_cast<std::size_t>(i);
+}
+
+std::uint64_t key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// ---------------------------------------------------------------------------
+// Step 1: triangles with a wale direction each, and the row time t.
+
+struct Triangle {
+  std::array<int, 3> v{};
+  int face = -1;
+  Vec3 normal = Vec3::Zero();  // unit
+  double area = 0;
+  Vec3 wale = Vec3::Zero();  // unit, in the triangle's plane
+  Vec3 grad = Vec3::Zero();  // gradient of t
+};
+
+Vec3 face_normal(const LabelledDisc& disc, const std::vector<int>& face) {
+  Vec3 n = Vec3::Zero();
+  for (std::size_t i = 0; i < face.size(); ++i) {
+    n += disc.positions[at(face[i])].cross(disc.positions[at(face[(i + 1) % face.size()])]);
+  }
+  return n;
+}
+
+std::vector<Triangle> triangulate(const LabelledDisc& disc) {
+  std::vector<Triangle> tris;
+  for (std::size_t f = 0; f < disc.faces.size(); ++f) {
+    const std::vector<int>& face = disc.faces[f];
+    const std::vector<int>& dir = disc.directions[f];
+    Vec3 course = Vec3::Zero();
+    Vec3 wale = Vec3::Zero();
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const Vec3 e = disc.positions[at(face[(i + 1) % face.size()])] - disc.positions[at(face[i])];
+      const double len = e.norm();
+      if (len <= 0) continue;
+      const Vec3 u = e / len;
+      switch (dir[i] & 3) {
+        case 0:
+          course += u;
+          break;
+        case 1:
+          wale += u;
+          break;
+        case 2:
+          course -= u;
+          break;
+        default:
+          wale -= u;
+          break;
+      }
+    }
+    // Quads are split along the shorter diagonal, other polygons as a fan.
+    std::size_t start = 0;
+    if (face.size() == 4) {
+      const double d02 = (disc.positions[at(face[0])] - disc.positions[at(face[2])]).norm();
+      const double d13 = (disc.positions[at(face[1])] - disc.positions[at(face[3])]).norm();
+      if (d13 < d02) start = 1;
+    }
+    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+      Triangle t;
+      t.v = {face[start], face[(start + i) % face.size()], face[(start + i + 1) % face.size()]};
+      t.face = static_cast<int>(f);
+      const Vec3 p0 = disc.positions[at(t.v[0])];
+      const Vec3 n = (disc.positions[at(t.v[1])] - p0).cross(disc.positions[at(t.v[2])] - p0);
+      t.area = 0.5 * n.norm();
+      t.normal = t.area > 0 ? Vec3(n.normalized()) : Vec3(face_normal(disc, face).normalized());
+      // +v is +u turned a quarter turn counter-clockwise about the normal.
+      // Rows run along the course sides, so those set the wale direction;
+      // +v sides are only a fallback (a face labelled by its wale sides alone).
+      const Vec3 w = wale - wale.dot(t.normal) * t.normal;
+      const Vec3 c = course - course.dot(t.normal) * t.normal;
+      if (c.norm() > 1e-12) {
+        t.wale = t.normal.cross(c.normalized());
+      } else if (w.norm() > 1e-12) {
+        t.wale = w.normalized();
+      }
+      tris.push_back(t);
+    }
+  }
+  return tris;
+}
+
+// Gradients of the three hat functions of a triangle.
+std::array<Vec3, 3> hat_gradients(const LabelledDisc& disc, const Triangle& t) {
+  std::array<Vec3, 3> g;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 e =
+        disc.positions[at(t.v[at((i + 2) % 3)])] - disc.positions[at(t.v[at((i + 1) % 3)])];
+    g[at(i)] = t.area > 0 ? Vec3(t.normal.cross(e) / (2 * t.area)) : Vec3::Zero();
+  }
+  return g;
+}
+
+// Least-squares fit of t to the target gradients (Poisson equation with
+// the cotangent Laplacian), then straightening fits towards unit speed.
+Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
+                         const RemeshParams& params) {
+  const int n = static_cast<int>(disc.positions.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<std::array<Vec3, 3>> grads(tris.size());
+  double diagonal = 0;
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    grads[k] = hat_gradients(disc, tris[k]);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        const double value = tris[k].area * grads[k][at(i)].dot(grads[k][at(j)]);
+        entries.emplace_back(tris[k].v[at(i)], tris[k].v[at(j)], value);
+        if (i == j) diagonal += value;
+      }
+    }
+  }
+  // A tiny mass term fixes the constant; t is shifted to start at 0 later.
+  const double epsilon = 1e-9 * diagonal / std::max(1, n);
+  for (int i = 0; i < n; ++i) entries.emplace_back(i, i, epsilon);
+  Eigen::SparseMatrix<double> matrix(n, n);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(matrix);
+  if (solver.info() != Eigen::Success) {
+    throw std::runtime_error("row time: the Laplacian could not be factorised");
+  }
+  std::vector<Vec3> target(tris.size());
+  for (std::size_t k = 0; k < tris.size(); ++k) target[k] = tris[k].wale / params.wale_mm;
+  Eigen::VectorXd t = Eigen::VectorXd::Zero(n);
+  for (int iteration = 0; iteration <= params.straighten_iterations; ++iteration) {
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+      for (int i = 0; i < 3; ++i) {
+        rhs[tris[k].v[at(i)]] += tris[k].area * grads[k][at(i)].dot(target[k]);
+      }
+    }
+    t = solver.solve(rhs);
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+      Vec3 g = Vec3::Zero();
+      for (int i = 0; i < 3; ++i) g += t[tris[k].v[at(i)]] * grads[k][at(i)];
+      tris[k].grad = g;
+      // Keep the labelled direction and the fitted one in equal parts, at
+      // unit speed: rows follow the labels and keep their height.
+      Vec3 d = params.label_weight * tris[k].wale;
+      if (g.norm() > 1e-12) d += g.normalized();
+      if (d.norm() > 1e-12) target[k] = d.normalized() / params.wale_mm;
+    }
+  }
+  t.array() -= t.minCoeff();
+  return t;
+}
+
+// ---------------------------------------------------------------------------
+// Step 2: pieces of triangles between consecutive levels.
+
+struct Pieces {
+  std::vector<Vec3> position;    // piece vertices: input vertices, then level crossings
+  std::vector<int> start{0};     // piece p: half-edges start[p] .. start[p+1]-1
+  std::vector<int> band;         // per piece
+  std::vector<int> tri;          // per piece
+  std::vector<int> from;         // per half-edge
+  std::vector<int> level;        // per half-edge: level index of an isoline side, else -1
+  std::vector<int> source_face;  // per half-edge on the disc boundary: input face, else -1
+  std::vector<int> source_side;  // ... and its side
+  std::vector<int> twin;         // per half-edge, -1 if none
+  std::vector<int> piece;        // per half-edge
+
+  int next(int h) const {
+    const int p = piece[at(h)];
+    return h + 1 < start[at(p) + 1] ? h + 1 : start[at(p)];
+  }
+  int to(int h) const { return from[at(next(h))]; }
+};
+
+Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const Eigen::VectorXd& t,
+             double spacing, int bands) {
+  Pieces out;
+  out.position = disc.positions;
+  // Directed input edges that are sides of input faces on the boundary.
+  std::unordered_map<std::uint64_t, std::pair<int, int>> directed;
+  for (std::size_t f = 0; f < disc.faces.size(); ++f) {
+    const std::vector<int>& face = disc.faces[f];
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      directed[key(face[i], face[(i + 1) % face.size()])] = {static_cast<int>(f),
+                                                             static_cast<int>(i)};
+    }
+  }
+  // Values a hair off the levels, so no vertex lies on one.
+  std::vector<double> value(at(static_cast<int>(t.size())));
+  for (int i = 0; i < t.size(); ++i) {
+    double x = t[i] / spacing;
+    const double nearest = std::round(x);
+    if (std::abs(x - nearest) < 1e-6) x = nearest + 2e-6;
+    value[at(i)] = x;
+  }
+  auto band_of = [&](double x) {
+    return std::clamp(static_cast<int>(std::floor(x)), 0, bands - 1);
+  };
+  std::map<std::tuple<int, int, int>, int> crossings;
+  auto get_crossing = [&](int a, int b, int level) {
+    const int lo = std::min(a, b);
+    const int hi = std::max(a, b);
+    auto [it, inserted] = crossings.emplace(std::make_tuple(lo, hi, level), 0);
+    if (inserted) {
+      const double s = (level - value[at(lo)]) / (value[at(hi)] - value[at(lo)]);
+      it->second = static_cast<int>(out.position.size());
+      out.position.push_back((1 - s) * disc.positions[at(lo)] + s * disc.positions[at(hi)]);
+    }
+    return it->second;
+  };
+  struct Corner {
+    int vertex;
+    int edge;   // triangle side (0..2) of a crossing, -1 for an input vertex
+    int level;  // of a crossing
+  };
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    const Triangle& tri = tris[k];
+    int lo = bands;
+    int hi = -1;
+    for (int v : tri.v) {
+      lo = std::min(lo, band_of(value[at(v)]));
+      hi = std::max(hi, band_of(value[at(v)]));
+    }
+    for (int b = lo; b <= hi; ++b) {
+      std::vector<Corner> corners;
+      for (int i = 0; i < 3; ++i) {
+        const int p = tri.v[at(i)];
+        const int q = tri.v[at((i + 1) % 3)];
+        if (band_of(value[at(p)]) == b) corners.push_back({p, -1, 0});
+        const double vp = value[at(p)];
+        const double vq = value[at(q)];
+        // Levels b (bottom) and b + 1 (top) crossed by p -> q, in travel order.
+        std::vector<int> levels;
+        for (int level : {b, b + 1}) {
+          if (level <= 0 || level >= bands) continue;
+          if ((vp < level) != (vq < level)) levels.push_back(level);
+        }
+        if (levels.size() == 2 && vp > vq) std::swap(levels[0], levels[1]);
+        for (int level : levels) corners.push_back({get_crossing(p, q, level), i, level});
+      }
+      if (corners.size() < 3) continue;
+      const int piece = static_cast<int>(out.band.size());
+      out.band.push_back(b);
+      out.tri.push_back(static_cast<int>(k));
+      for (std::size_t c = 0; c < corners.size(); ++c) {
+        const Corner& a = corners[c];
+        const Corner& z = corners[(c + 1) % corners.size()];
+        out.from.push_back(a.vertex);
+        out.piece.push_back(piece);
+        int level = -1;
+        int side = -1;  // triangle side the half-edge lies on
+        if (a.edge >= 0 && z.edge >= 0 && a.edge != z.edge && a.level == z.level) {
+          level = a.level;
+        } else if (a.edge >= 0) {
+          side = a.edge;
+        } else if (z.edge >= 0) {
+          side = z.edge;
+        } else {
+          // Two input vertices: the side that starts at a.
+          for (int i = 0; i < 3; ++i) {
+            if (tri.v[at(i)] == a.vertex) side = i;
+          }
+        }
+        out.level.push_back(level);
+        int source_face = -1;
+        int source_side = -1;
+        if (side >= 0) {
+          const int p = tri.v[at(side)];
+          const int q = tri.v[at((side + 1) % 3)];
+          if (directed.find(key(q, p)) == directed.end()) {
+            auto it = directed.find(key(p, q));
+            if (it != directed.end()) {
+              source_face = it->second.first;
+              source_side = it->second.second;
+            }
+          }
+        }
+        out.source_face.push_back(source_face);
+        out.source_side.push_back(source_side);
+      }
+      out.start.push_back(static_cast<int>(out.from.size()));
+    }
+  }
+  out.twin.assign(out.from.size(), -1);
+  std::unordered_map<std::uint64_t, int> half;
+  half.reserve(out.from.size());
+  for (int h = 0; h < static_cast<int>(out.from.size()); ++h)
+    half[key(out.from[at(h)], out.to(h))] = h;
+  for (int h = 0; h < static_cast<int>(out.from.size()); ++h) {
+    auto it = half.find(key(out.to(h), out.from[at(h)]));
+    if (it != half.end()) out.twin[at(h)] = it->second;
+  }
+  return out;
+}
+
+int find(std::vector<int>& parent, int x) {
+  while (parent[at(x)] != x) {
+    parent[at(x)] = parent[at(parent[at(x)])];
+    x = parent[at(x)];
+  }
+  return x;
+}
+
+// ---------------------------------------------------------------------------
+// Steps 3-4: chains of each strip, stitch vertices, faces.
+
+enum class Side : std::uint8_t { Low, High, Wale };
+
+struct Run {
+  Side side = Side::Wale;
+  bool level = false;          // an isoline (shared with the next strip), not the disc boundary
+  std::vector<int> halfedges;  // in loop order
+  double length = 0;
+};
+
+struct Chain {
+  Side side = Side::Wale;
+  std::vector<Run> runs;
+};
+
+struct Builder {
+  const LabelledDisc& disc;
+  const RemeshParams& params;
+  const Pieces& pieces;
+  StitchMesh mesh;
+  std::unordered_map<int, int> anchor;  // piece vertex -> stitch vertex
+  // Level curve (by any of its undirected piece edges) -> its stitch vertices
+  // in the order of the first strip that sampled it, and that order's first piece vertex.
+  std::unordered_map<std::uint64_t, int> curve_of_edge;
+  std::vector<std::vector<int>> curve_samples;
+  std::vector<int> curve_first;
+  std::vector<std::string> problems;
+  RemeshStats stats;
+  // Bottom sides (as the row above walks them) of increases and decreases.
+  std::unordered_set<std::uint64_t> shaped_below;
+
+  int stitch_vertex(int piece_vertex) {
+    auto [it, inserted] = anchor.emplace(piece_vertex, 0);
+    if (inserted) {
+      it->second = static_cast<int>(mesh.positions.size());
+      mesh.positions.push_back(pieces.position[at(piece_vertex)]);
+    }
+    return it->second;
+  }
+
+  std::int32_t arc_of(int h) const {
+    const int f = pieces.source_face[at(h)];
+    if (f < 0 || disc.arcs.empty()) return kNoArc;
+    return disc.arcs[at(f)][at(pieces.source_side[at(h)])];
+  }
+
+  // Stitch vertices along a run, every ~course_mm; arcs[i] for segment i.
+  int auto_count(double length) const {
+    return std::max(1, static_cast<int>(std::lround(length / params.course_mm)));
+  }
+
+  std::vector<int> sample(const std::vector<int>& halfedges, std::vector<std::int32_t>* arcs,
+                          int n) {
+    std::vector<double> along{0};
+    for (int h : halfedges) {
+      along.push_back(
+          along.back() +
+          (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm());
+    }
+    const double total = along.back();
+    std::vector<int> out{stitch_vertex(pieces.from[at(halfedges.front())])};
+    std::size_t h = 0;
+    for (int i = 1; i <= n; ++i) {
+      const double s = total * i / n;
+      const double mid = total * (i - 0.5) / n;
+      std::size_t m = 0;
+      while (m + 1 < halfedges.size() && along[m + 1] < mid) ++m;
+      if (arcs != nullptr) arcs->push_back(arc_of(halfedges[m]));
+      if (i == n) {
+        out.push_back(stitch_vertex(pieces.to(halfedges.back())));
+        break;
+      }
+      while (h + 1 < halfedges.size() && along[h + 1] < s) ++h;
+      const double span = along[h + 1] - along[h];
+      const double w = span > 0 ? (s - along[h]) / span : 0;
+      const Vec3 p = (1 - w) * pieces.position[at(pieces.from[at(halfedges[h])])] +
+                     w * pieces.position[at(pieces.to(halfedges[h]))];
+      out.push_back(static_cast<int>(mesh.positions.size()));
+      mesh.positions.push_back(p);
+    }
+    return out;
+  }
+
+  std::uint64_t undirected(int h) const {
+    const int a = pieces.from[at(h)];
+    const int b = pieces.to(h);
+    return key(std::min(a, b), std::max(a, b));
+  }
+
+  // A level curve is sampled once (by the strip below it, with n segments);
+  // the strip above reuses the samples.
+  const std::vector<int>* sampled_curve(const Run& run) const {
+    auto it = curve_of_edge.find(undirected(run.halfedges.front()));
+    return it == curve_of_edge.end() ? nullptr : &curve_samples[at(it->second)];
+  }
+
+  std::vector<int> level_samples(const Run& run, int n) {
+    auto it = curve_of_edge.find(undirected(run.halfedges.front()));
+    if (it == curve_of_edge.end()) {
+      const int id = static_cast<int>(curve_samples.size());
+      curve_samples.push_back(sample(run.halfedges, nullptr, n));
+      curve_first.push_back(pieces.from[at(run.halfedges.front())]);
+      for (int h : run.halfedges) curve_of_edge[undirected(h)] = id;
+      return curve_samples.back();
+    }
+    std::vector<int> samples = curve_samples[at(it->second)];
+    if (curve_first[at(it->second)] != pieces.from[at(run.halfedges.front())]) {
+      std::reverse(samples.begin(), samples.end());
+    }
+    return samples;
+  }
+
+  // Segments per run of a chain: fixed for level curves sampled already,
+  // else ~length / course_mm.
+  std::vector<int> run_counts(const Chain& chain) const {
+    std::vector<int> counts;
+    for (const Run& run : chain.runs) {
+      const std::vector<int>* done = run.level ? sampled_curve(run) : nullptr;
+      counts.push_back(done != nullptr ? static_cast<int>(done->size()) - 1
+                                       : auto_count(run.length));
+    }
+    return counts;
+  }
+
+  // Changes the free runs' counts (not fixed ones) so they sum to `total`
+  // where possible, in proportion to their length; each keeps at least one.
+  static void rescale(const Chain& chain, const std::vector<bool>& fixed, std::vector<int>& counts,
+                      int total) {
+    int current = std::accumulate(counts.begin(), counts.end(), 0);
+    for (int guard = 0; current != total && guard < 100000; ++guard) {
+      // Add to the free run with the longest segments, or take from the one
+      // with the shortest.
+      int best = -1;
+      double best_value = 0;
+      for (std::size_t r = 0; r < counts.size(); ++r) {
+        if (fixed[r]) continue;
+        const double per = chain.runs[r].length / counts[r];
+        if (current < total) {
+          if (best < 0 || per > best_value) best = static_cast<int>(r), best_value = per;
+        } else if (counts[r] > 1) {
+          if (best < 0 || per < best_value) best = static_cast<int>(r), best_value = per;
+        }
+      }
+      if (best < 0) return;
+      counts[at(best)] += current < total ? 1 : -1;
+      current += current < total ? 1 : -1;
+    }
+  }
+
+  std::vector<bool> fixed_runs(const Chain& chain) const {
+    std::vector<bool> fixed;
+    for (const Run& run : chain.runs) fixed.push_back(run.level && sampled_curve(run) != nullptr);
+    return fixed;
+  }
+
+  // Vertices of a course chain and the arcs of its segments.
+  std::vector<int> chain_vertices(const Chain& chain, const std::vector<int>& counts,
+                                  std::vector<std::int32_t>& arcs,
+                                  std::vector<bool>* on_level = nullptr) {
+    std::vector<int> out;
+    for (std::size_t r = 0; r < chain.runs.size(); ++r) {
+      const Run& run = chain.runs[r];
+      std::vector<std::int32_t> run_arcs;
+      std::vector<int> v;
+      if (run.level) {
+        v = level_samples(run, counts[r]);
+        run_arcs.assign(v.size() - 1, kNoArc);
+      } else {
+        v = sample(run.halfedges, &run_arcs, counts[r]);
+      }
+      if (!out.empty() && out.back() == v.front()) {
+        out.insert(out.end(), v.begin() + 1, v.end());
+      } else {
+        if (!out.empty()) {
+          throw std::logic_error("stitch meshing: chain runs do not meet");
+        }
+        out = v;
+      }
+      arcs.insert(arcs.end(), run_arcs.begin(), run_arcs.end());
+      if (on_level != nullptr) on_level->insert(on_level->end(), run_arcs.size(), run.level);
+    }
+    return out;
+  }
+
+  void add_face(std::vector<int> vertices, std::vector<EdgeRole> roles,
+                std::vector<std::int32_t> arcs) {
+    StitchFace face;
+    face.vertices.assign(vertices.begin(), vertices.end());
+    face.roles = std::move(roles);
+    face.arcs = std::move(arcs);
+    const std::optional<FaceType> type = classify_roles(face.roles);
+    if (!type) ++stats.invalid_faces;
+    face.type = type.value_or(FaceType::Knit);
+    if (face.type == FaceType::Increase || face.type == FaceType::Decrease) {
+      // Remember the pentagon's top sides, as the row above walks them.
+      const std::size_t n = face.vertices.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (face.roles[i] == EdgeRole::CourseOut) {
+          shaped_below.insert(key(static_cast<int>(face.vertices[(i + 1) % n]),
+                                  static_cast<int>(face.vertices[i])));
+        }
+      }
+    }
+    mesh.faces.push_back(std::move(face));
+  }
+
+  std::vector<Run> loop_runs(const std::vector<int>& loop, int band, const Eigen::VectorXd&,
+                             const std::vector<Triangle>& tris) {
+    std::vector<Run> runs;
+    for (int h : loop) {
+      Run piece;
+      const double length =
+          (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
+      const int level = pieces.level[at(h)];
+      if (level >= 0) {
+        piece.level = true;
+        piece.side = level == band ? Side::Low : Side::High;
+      } else {
+        // §6.2: the side's direction against the row direction.
+        const Triangle& tri = tris[at(pieces.tri[at(pieces.piece[at(h)])])];
+        const Vec3 e = pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])];
+        const Vec3 outward = e.cross(tri.normal);
+        const double c = tri.grad.norm() > 0 && outward.norm() > 0
+                             ? tri.grad.normalized().dot(outward.normalized())
+                             : 0.0;
+        piece.side = c > params.side_cosine    ? Side::High
+                     : c < -params.side_cosine ? Side::Low
+                                               : Side::Wale;
+      }
+      if (!runs.empty() && runs.back().level == piece.level && runs.back().side == piece.side) {
+        runs.back().halfedges.push_back(h);
+        runs.back().length += length;
+      } else {
+        piece.halfedges.push_back(h);
+        piece.length = length;
+        runs.push_back(std::move(piece));
+      }
+    }
+    if (runs.size() > 1 && runs.front().level == runs.back().level &&
+        runs.front().side == runs.back().side) {
+      runs.back().halfedges.insert(runs.back().halfedges.end(), runs.front().halfedges.begin(),
+                                   runs.front().halfedges.end());
+      runs.back().length += runs.front().length;
+      runs.erase(runs.begin());
+    }
+    return runs;
+  }
+
+  // Groups runs into chains: short boundary course runs become wale; a wale
+  // run between two chains of one kind joins them.
+  std::vector<Chain> chains(std::vector<Run> runs) {
+    for (Run& run : runs) {
+      if (!run.level && run.side != Side::Wale && run.length < 0.5 * params.course_mm) {
+        run.side = Side::Wale;
+      }
+    }
+    std::vector<Chain> out;
+    auto merge_same = [&]() {
+      std::vector<Chain> merged;
+      for (Chain& c : out) {
+        if (!merged.empty() && merged.back().side == c.side) {
+          for (Run& r : c.runs) merged.back().runs.push_back(std::move(r));
+        } else {
+          merged.push_back(std::move(c));
+        }
+      }
+      if (merged.size() > 1 && merged.front().side == merged.back().side) {
+        for (Run& r : merged.front().runs) merged.back().runs.push_back(std::move(r));
+        merged.erase(merged.begin());
+      }
+      out = std::move(merged);
+    };
+    for (Run& run : runs) {
+      Chain c;
+      c.side = run.side;
+      c.runs.push_back(std::move(run));
+      out.push_back(std::move(c));
+    }
+    merge_same();
+    bool changed = true;
+    while (changed && out.size() > 2) {
+      changed = false;
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        const Chain& before = out[(i + out.size() - 1) % out.size()];
+        const Chain& after = out[(i + 1) % out.size()];
+        if (out[i].side == Side::Wale && before.side == after.side) {
+          out[i].side = before.side;
+          changed = true;
+        }
+      }
+      merge_same();
+      // A short stretch of boundary facing up or down between chains of the
+      // other kind is a step of a jagged cut, not a row end: a wale side.
+      if (!changed && out.size() > 2) {
+        for (Chain& c : out) {
+          if (c.side == Side::Wale) continue;
+          double length = 0;
+          bool boundary_only = true;
+          for (const Run& r : c.runs) {
+            length += r.length;
+            boundary_only = boundary_only && !r.level;
+          }
+          if (boundary_only && length < params.step_mm_factor * params.wale_mm) {
+            c.side = Side::Wale;
+            changed = true;
+            break;
+          }
+        }
+        merge_same();
+      }
+      // Still more than one chain of a kind: the boundary folds against the
+      // rows. The shortest boundary-only course chain gives way first (it
+      // joins its neighbours' kind, or becomes a side).
+      int lows = 0;
+      for (const Chain& c : out) lows += c.side == Side::Low;
+      if (!changed && lows > 1) {
+        double shortest = std::numeric_limits<double>::infinity();
+        Chain* pick = nullptr;
+        for (Chain& c : out) {
+          if (c.side == Side::Wale) continue;
+          double length = 0;
+          bool boundary_only = true;
+          for (const Run& r : c.runs) {
+            length += r.length;
+            boundary_only = boundary_only && !r.level;
+          }
+          if (boundary_only && length < shortest) {
+            shortest = length;
+            pick = &c;
+          }
+        }
+        if (pick != nullptr) {
+          pick->side = Side::Wale;
+          changed = true;
+        }
+        merge_same();
+      }
+      if (false) {
+        for (Chain& c : out) {
+          if (c.side == Side::Wale) continue;
+          double length = 0;
+          bool boundary_only = true;
+          for (const Run& r : c.runs) {
+            length += r.length;
+            boundary_only = boundary_only && !r.level;
+          }
+          if (boundary_only && length < 0) {
+            c.side = Side::Wale;
+            changed = true;
+            break;
+          }
+        }
+        merge_same();
+      }
+    }
+    // Neighbouring boundary runs of one chain are one stretch of boundary.
+    for (Chain& c : out) {
+      std::vector<Run> joined;
+      for (Run& r : c.runs) {
+        if (!joined.empty() && !joined.back().level && !r.level) {
+          joined.back().halfedges.insert(joined.back().halfedges.end(), r.halfedges.begin(),
+                                         r.halfedges.end());
+          joined.back().length += r.length;
+        } else {
+          joined.push_back(std::move(r));
+        }
+      }
+      c.runs = std::move(joined);
+    }
+    // Short boundary runs at the ends of a course chain beside a wale side
+    // join the wale side: a wale edge, not a sliver course edge.
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      if (out[i].side != Side::Wale) continue;
+      Chain& before = out[(i + out.size() - 1) % out.size()];
+      Chain& after = out[(i + 1) % out.size()];
+      if (before.side != Side::Wale && before.runs.size() > 1 && !before.runs.back().level &&
+          before.runs.back().length < 0.5 * params.course_mm) {
+        out[i].runs.insert(out[i].runs.begin(), std::move(before.runs.back()));
+        before.runs.pop_back();
+      }
+      if (after.side != Side::Wale && after.runs.size() > 1 && !after.runs.front().level &&
+          after.runs.front().length < 0.5 * params.course_mm) {
+        out[i].runs.push_back(std::move(after.runs.front()));
+        after.runs.erase(after.runs.begin());
+      }
+    }
+    return out;
+  }
+
+  std::int32_t wale_arc(const Chain& chain) const {
+    std::vector<int> all;
+    double total = 0;
+    for (const Run& r : chain.runs) {
+      for (int h : r.halfedges) {
+        all.push_back(h);
+        total +=
+            (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
+      }
+    }
+    double walked = 0;
+    for (int h : all) {
+      walked +=
+          (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
+      if (walked >= 0.5 * total) return arc_of(h);
+    }
+    return all.empty() ? kNoArc : arc_of(all.back());
+  }
+
+  // Sides taken from the bottom and top chain by each face between the wale
+  // sides (l[i0], t[j0]) and (l[i1], t[j1]). Each step is (1, 1), (2, 1) or
+  // (1, 2) when the chains allow it (neither more than twice the other);
+  // otherwise the counts are spread evenly and the faces come out invalid.
+  std::vector<std::pair<int, int>> zip_steps(const std::vector<int>& l, const std::vector<int>& t,
+                                             int i0, int j0, int i1, int j1, bool left_boundary,
+                                             bool right_boundary) const {
+    const int na = i1 - i0;
+    const int nb = j1 - j0;
+    std::vector<std::pair<int, int>> steps;
+    if (na > 2 * nb || nb > 2 * na) {
+      const int faces = std::min(na, nb);
+      for (int f = 0; f < faces; ++f) {
+        const int cb = (f + 1) * na / faces - f * na / faces;
+        const int ct = (f + 1) * nb / faces - f * nb / faces;
+        steps.push_back({cb, ct});
+      }
+      return steps;
+    }
+    const double inf = std::numeric_limits<double>::infinity();
+    const int width = nb + 1;
+    // State: wale side (i, j) reached by move m (0 knit, 1 decrease, 2 increase).
+    auto index = [&](int i, int j, int m) { return at(((i * width) + j) * 3 + m); };
+    std::vector<double> cost(at((na + 1) * width * 3), inf);
+    std::vector<std::int8_t> came(at((na + 1) * width * 3), -1);
+    auto wale_cost = [&](int i, int j) {
+      const double len =
+          (mesh.positions[at(l[at(i0 + i)])] - mesh.positions[at(t[at(j0 + j)])]).norm();
+      const double d = (len - params.wale_mm) / params.wale_mm;
+      return d * d;
+    };
+    // Fig. 7 rules of thumb as costs (docs/stitch-mesh.md): no increase or
+    // decrease at a row's end on the boundary, none on a bottom side made by
+    // an increase or decrease of the row below, and no increase beside a
+    // decrease.
+    auto shaped = [&](int i, int count) {
+      for (int k = 0; k < count; ++k) {
+        if (shaped_below.count(key(l[at(i0 + i + k)], l[at(i0 + i + k + 1)])) != 0) return true;
+      }
+      return false;
+    };
+    const std::array<std::pair<int, int>, 3> moves{{{1, 1}, {2, 1}, {1, 2}}};
+    const double pentagon =
+        params.pentagon_cost;  // prefer knit stitches where rows keep their length
+    const double rule = params.stability_cost;
+    cost[index(0, 0, 0)] = wale_cost(0, 0);
+    for (int i = 0; i <= na; ++i) {
+      for (int j = 0; j <= nb; ++j) {
+        for (int last = 0; last < 3; ++last) {
+          const double here = cost[index(i, j, last)];
+          if (here == inf) continue;
+          for (std::size_t m = 0; m < moves.size(); ++m) {
+            const int ni = i + moves[m].first;
+            const int nj = j + moves[m].second;
+            if (ni > na || nj > nb) continue;
+            // Stay where the end can still be reached.
+            const int ra = na - ni;
+            const int rb = nb - nj;
+            if (ra > 2 * rb || rb > 2 * ra) continue;
+            double c = here + wale_cost(ni, nj);
+            if (m != 0) {
+              c += pentagon;
+              if ((i == 0 && j == 0 && left_boundary) || (ni == na && nj == nb && right_boundary)) {
+                c += rule;  // rule 1: shaping at the edge of the fabric
+              }
+              if (shaped(i, moves[m].first)) c += rule;  // rule 2: stacked shaping
+              if (last != 0 && last != static_cast<int>(m))
+                c += rule;  // rule 3: increase by decrease
+            }
+            if (c < cost[index(ni, nj, static_cast<int>(m))]) {
+              cost[index(ni, nj, static_cast<int>(m))] = c;
+              came[index(ni, nj, static_cast<int>(m))] = static_cast<std::int8_t>(last);
+            }
+          }
+        }
+      }
+    }
+    int best = 0;
+    for (int m = 1; m < 3; ++m) {
+      if (cost[index(na, nb, m)] < cost[index(na, nb, best)]) best = m;
+    }
+    if (cost[index(na, nb, best)] == inf) {
+      throw std::logic_error("stitch meshing: zip found no path although the chains allow one");
+    }
+    for (int i = na, j = nb, m = best; i > 0 || j > 0;) {
+      const auto move = moves[at(m)];
+      const int previous = came[index(i, j, m)];
+      steps.push_back(move);
+      i -= move.first;
+      j -= move.second;
+      m = previous;
+    }
+    std::reverse(steps.begin(), steps.end());
+    return steps;
+  }
+
+  int first_vertex(const Chain& c) const {
+    return pieces.from[at(c.runs.front().halfedges.front())];
+  }
+  int last_vertex(const Chain& c) const { return pieces.to(c.runs.back().halfedges.back()); }
+
+  // A strip around saddles of the row time (m >= 2 bottom and m top chains,
+  // alternating; X-shaped for one saddle): one wale edge between two corners
+  // two course chains apart (a corner is where a bottom and a top chain
+  // meet) cuts off a simple strip of the two chains between them, and leaves
+  // m - 1 pairs. A side chain at such a corner is first joined to the
+  // bottom chain there (cast-on stitches), so the corner is a point. Of the
+  // 2m possible edges the shortest is used; the rest is split again.
+  bool split_folds(const std::string& where, std::vector<Chain> loop) {
+    while (loop.front().side != Side::Low) std::rotate(loop.begin(), loop.begin() + 1, loop.end());
+    std::vector<Chain> courses;
+    std::vector<Chain> sides;    // side chain after each course chain
+    std::vector<bool> has_side;  // a boundary side, or an edge made by an earlier split
+    for (Chain& c : loop) {
+      if (c.side == Side::Wale) {
+        if (courses.empty() || has_side.back()) return false;
+        sides.back() = std::move(c);
+        has_side.back() = true;
+      } else {
+        if (!courses.empty() && courses.back().side == c.side) return false;
+        if (c.runs.empty()) return false;
+        courses.push_back(std::move(c));
+        Chain none;
+        none.side = Side::Wale;
+        sides.push_back(std::move(none));
+        has_side.push_back(false);
+      }
+    }
+    const std::size_t n = courses.size();
+    if (n < 4 || n % 2 != 0) return false;
+    // An edge of an earlier split cannot join a bottom chain.
+    auto usable = [&](std::size_t k) { return !has_side[k] || !sides[k].runs.empty(); };
+    // Corner after course chain k once its side chain has joined a bottom chain.
+    auto corner = [&](std::size_t k) {
+      if (courses[k].side == Side::Low) {
+        return sides[k].runs.empty() ? last_vertex(courses[k]) : last_vertex(sides[k]);
+      }
+      return sides[k].runs.empty() ? first_vertex(courses[(k + 1) % n]) : first_vertex(sides[k]);
+    };
+    std::size_t pick = 0;
+    double shortest = std::numeric_limits<double>::infinity();
+    bool found = false;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!usable(k) || !usable((k + 2) % n)) continue;
+      found = true;
+      const double d =
+          (pieces.position[at(corner(k))] - pieces.position[at(corner((k + 2) % n))]).norm();
+      if (d < shortest) {
+        shortest = d;
+        pick = k;
+      }
+    }
+    if (!found) return false;
+    for (std::size_t k : {pick, (pick + 2) % n}) {
+      if (!has_side[k]) continue;
+      has_side[k] = false;
+      if (courses[k].side == Side::Low) {
+        for (Run& r : sides[k].runs) courses[k].runs.push_back(std::move(r));
+      } else {
+        Chain& next = courses[(k + 1) % n];
+        next.runs.insert(next.runs.begin(), sides[k].runs.begin(), sides[k].runs.end());
+      }
+      sides[k].runs.clear();
+    }
+    for (Chain& c : courses) {
+      std::vector<Run> joined;
+      for (Run& r : c.runs) {
+        if (!joined.empty() && !joined.back().level && !r.level) {
+          joined.back().halfedges.insert(joined.back().halfedges.end(), r.halfedges.begin(),
+                                         r.halfedges.end());
+          joined.back().length += r.length;
+        } else {
+          joined.push_back(std::move(r));
+        }
+      }
+      c.runs = std::move(joined);
+    }
+    Chain edge;  // the splitting wale edge: no boundary runs
+    edge.side = Side::Wale;
+    auto with_side = [&](std::vector<Chain>& out, std::size_t k) {
+      out.push_back(courses[k]);
+      if (has_side[k]) out.push_back(sides[k]);
+    };
+    // Cut off: course chains pick+1 and pick+2 with the edge; the rest keeps
+    // the edge on its other side.
+    std::vector<Chain> part;
+    with_side(part, (pick + 1) % n);
+    part.push_back(courses[(pick + 2) % n]);  // its side was joined or is empty
+    part.push_back(edge);
+    std::vector<Chain> rest;
+    for (std::size_t k = (pick + 3) % n; k != (pick + 1) % n; k = (k + 1) % n) {
+      if (k == pick) {
+        rest.push_back(courses[k]);
+        rest.push_back(edge);
+      } else {
+        with_side(rest, k);
+      }
+    }
+    ++stats.saddles_split;
+    strip(where + " (fold)", std::move(part));
+    strip(where + " (rest)", std::move(rest));
+    return true;
+  }
+
+  void strip(const std::string& where, std::vector<Chain> loop) {
+    // Bring the loop to the form Low [Wale] High [Wale].
+    int lows = 0;
+    int highs = 0;
+    for (const Chain& c : loop) {
+      lows += c.side == Side::Low;
+      highs += c.side == Side::High;
+    }
+    if (lows == 0 || highs == 0) {
+      const Side missing = lows == 0 ? Side::Low : Side::High;
+      int walesides = 0;
+      for (Chain& c : loop) walesides += c.side == Side::Wale;
+      if (walesides == 1 && loop.size() == 2) {
+        for (Chain& c : loop) {
+          if (c.side == Side::Wale) c.side = missing;
+        }
+        lows = highs = 1;
+      }
+    }
+    if (loop.size() == 1 && loop.front().side != Side::Wale && loop.front().runs.size() > 1) {
+      // One course chain all round: a level curve closed by boundary that
+      // faces the same way. The boundary is the other chain.
+      Chain& only = loop.front();
+      const Side other = only.side == Side::Low ? Side::High : Side::Low;
+      while (!only.runs.front().level)
+        std::rotate(only.runs.begin(), only.runs.begin() + 1, only.runs.end());
+      Chain rest;
+      rest.side = other;
+      while (only.runs.size() > 1 && !only.runs.back().level) {
+        rest.runs.insert(rest.runs.begin(), std::move(only.runs.back()));
+        only.runs.pop_back();
+      }
+      if (!rest.runs.empty() && only.runs.size() == 1) {
+        loop.push_back(std::move(rest));
+        lows = highs = 1;
+      }
+    }
+    if (lows >= 2 && lows == highs && split_folds(where, loop)) return;
+    if (lows != 1 || highs != 1) {
+      std::string pattern;
+      for (const Chain& c : loop) {
+        double len = 0;
+        for (const Run& r : c.runs) len += r.length;
+        pattern += std::string(" ") +
+                   (c.side == Side::Low    ? "L"
+                    : c.side == Side::High ? "H"
+                                           : "S") +
+                   std::to_string(static_cast<int>(len * 10) / 10.0).substr(0, 4);
+      }
+      problems.push_back(where + pattern + ": " + std::to_string(lows) + " bottom and " +
+                         std::to_string(highs) +
+                         " top chains (expected one each); the row time folds here");
+      return;
+    }
+    while (loop.front().side != Side::Low) std::rotate(loop.begin(), loop.begin() + 1, loop.end());
+    const Chain* right_wale = nullptr;
+    const Chain* left_wale = nullptr;
+    const Chain* high = nullptr;
+    for (std::size_t i = 1; i < loop.size(); ++i) {
+      if (loop[i].side == Side::High) {
+        high = &loop[i];
+      } else if (high == nullptr) {
+        right_wale = &loop[i];
+      } else {
+        left_wale = &loop[i];
+      }
+    }
+    // Segment counts: the zip needs, after the end triangles of shared ends,
+    // either nothing left or one chain at most twice the other (§6.3).
+    const int shared = (left_wale == nullptr ? 1 : 0) + (right_wale == nullptr ? 1 : 0);
+    std::vector<int> low_counts = run_counts(loop.front());
+    std::vector<int> high_counts = run_counts(*high);
+    const std::vector<bool> low_fixed = fixed_runs(loop.front());
+    const std::vector<bool> high_fixed = fixed_runs(*high);
+    const int high_min = static_cast<int>(high->runs.size());
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const int a = std::accumulate(low_counts.begin(), low_counts.end(), 0);
+      const int b = std::accumulate(high_counts.begin(), high_counts.end(), 0);
+      if (shared == 2 && a == 1 && b == 1) break;  // a lens
+      const int na = a - shared;
+      int lo = 0;
+      int hi = 0;
+      if (shared == 2 && a == 1) {
+        lo = hi = 1;  // a lens: the edges below and above are glued
+      } else if (na <= 0) {
+        lo = hi = shared;  // only end triangles
+      } else {
+        lo = (na + 1) / 2 + shared;
+        hi = 2 * na + shared;
+      }
+      lo = std::max(lo, high_min);
+      if (lo <= hi) {
+        rescale(*high, high_fixed, high_counts, std::clamp(b, lo, hi));
+        break;
+      }
+      // The top chain cannot shrink enough: lengthen the bottom one.
+      rescale(loop.front(), low_fixed, low_counts,
+              std::max(1, shared + (std::max(0, high_min - shared) + 1) / 2));
+    }
+    std::vector<std::int32_t> low_arcs;
+    std::vector<std::int32_t> high_arcs;
+    const std::vector<int> l = chain_vertices(loop.front(), low_counts, low_arcs);
+    std::vector<bool> high_on_level;
+    std::vector<int> h = chain_vertices(*high, high_counts, high_arcs, &high_on_level);
+    const int a = static_cast<int>(l.size()) - 1;
+    const int b = static_cast<int>(h.size()) - 1;
+    // Top chain left to right: t[j] = h[b - j]; top segment j is high segment b - 1 - j.
+    std::vector<int> t(h.rbegin(), h.rend());
+    auto top_arc = [&](int j) { return high_arcs[at(b - 1 - j)]; };
+    const bool left_shared = left_wale == nullptr;
+    const bool right_shared = right_wale == nullptr;
+    if (left_shared != (t.front() == l.front()) || right_shared != (t.back() == l.back())) {
+      throw std::logic_error("stitch meshing: chain ends disagree with the strip's sides");
+    }
+    if (left_shared && right_shared && a == 1 && b == 2 && high_on_level[0] != high_on_level[1]) {
+      // One fixed bottom side, a top of a level piece and a boundary piece:
+      // the boundary piece is the wale side of a short-row triangle.
+      const EdgeRole first = high_on_level[0] ? EdgeRole::CourseOut : EdgeRole::Wale;
+      const EdgeRole second = high_on_level[1] ? EdgeRole::CourseOut : EdgeRole::Wale;
+      add_face({l[0], l[1], t[1]}, {EdgeRole::CourseIn, first, second},
+               {low_arcs[0], top_arc(1), top_arc(0)});
+      return;
+    }
+    if (left_shared && right_shared && a == 1 && b == 1) {
+      ++stats.lenses_skipped;  // one edge below, one above, same ends: they are glued
+      return;
+    }
+    using R = EdgeRole;
+    int i0 = 0;
+    int j0 = 0;
+    int i1 = a;
+    int j1 = b;
+    std::int32_t left_arc = left_wale != nullptr ? wale_arc(*left_wale) : kNoArc;
+    std::int32_t right_arc = right_wale != nullptr ? wale_arc(*right_wale) : kNoArc;
+    const bool room_for_both = a >= 2 && b >= 2;
+    const bool left_triangle = left_shared && (room_for_both || !right_shared) && a >= 1 && b >= 1;
+    const bool right_triangle = right_shared && (room_for_both || !left_shared) && a >= 1 &&
+                                b >= 1 && !(left_triangle && (a < 2 || b < 2));
+    if (left_triangle) {
+      // §6.3 short row ending on the left: the strip narrows to a point.
+      add_face({l[0], l[1], t[1]}, {R::CourseIn, R::Wale, R::CourseOut},
+               {low_arcs[0], kNoArc, top_arc(0)});
+      i0 = 1;
+      j0 = 1;
+      left_arc = kNoArc;
+    }
+    if (right_triangle) {
+      add_face({l[at(a - 1)], l[at(a)], t[at(b - 1)]}, {R::CourseIn, R::CourseOut, R::Wale},
+               {low_arcs[at(a - 1)], top_arc(b - 1), kNoArc});
+      i1 = a - 1;
+      j1 = b - 1;
+      right_arc = kNoArc;
+    }
+    const int na = i1 - i0;
+    const int nb = j1 - j0;
+    if (na == 0 && nb == 0) return;
+    if (na <= 0 || nb <= 0) {
+      // Nothing valid fits: one face with all that is left, reported by check.
+      std::vector<int> v;
+      std::vector<R> roles;
+      std::vector<std::int32_t> arcs;
+      for (int i = i0; i < i1; ++i) {
+        v.push_back(l[at(i)]);
+        roles.push_back(R::CourseIn);
+        arcs.push_back(low_arcs[at(i)]);
+      }
+      if (l[at(i1)] != t[at(j1)]) {
+        v.push_back(l[at(i1)]);
+        roles.push_back(R::Wale);
+        arcs.push_back(right_arc);
+      }
+      for (int j = j1; j > j0; --j) {
+        v.push_back(t[at(j)]);
+        roles.push_back(R::CourseOut);
+        arcs.push_back(top_arc(j - 1));
+      }
+      if (t[at(j0)] != l[at(i0)]) {
+        v.push_back(t[at(j0)]);
+        roles.push_back(R::Wale);
+        arcs.push_back(left_arc);
+      }
+      add_face(std::move(v), std::move(roles), std::move(arcs));
+      return;
+    }
+    // Zip (§6.3): faces with one or two sides on each chain (knit, decrease,
+    // increase), chosen by dynamic programming so wale sides are as close to
+    // wale_mm as possible and pentagons are used only where rows change length.
+    const std::vector<std::pair<int, int>> steps =
+        zip_steps(l, t, i0, j0, i1, j1, left_wale != nullptr && !left_wale->runs.empty(),
+                  right_wale != nullptr && !right_wale->runs.empty());
+    int i = i0;
+    int j = j0;
+    for (std::size_t f = 0; f < steps.size(); ++f) {
+      const int cb = steps[f].first;
+      const int ct = steps[f].second;
+      std::vector<int> v;
+      std::vector<R> roles;
+      std::vector<std::int32_t> arcs;
+      for (int k = 0; k < cb; ++k) {
+        v.push_back(l[at(i + k)]);
+        roles.push_back(R::CourseIn);
+        arcs.push_back(low_arcs[at(i + k)]);
+      }
+      v.push_back(l[at(i + cb)]);
+      roles.push_back(R::Wale);
+      arcs.push_back(f + 1 == steps.size() ? right_arc : kNoArc);
+      for (int k = ct; k > 0; --k) {
+        v.push_back(t[at(j + k)]);
+        roles.push_back(R::CourseOut);
+        arcs.push_back(top_arc(j + k - 1));
+      }
+      v.push_back(t[at(j)]);
+      roles.push_back(R::Wale);
+      arcs.push_back(f == 0 ? left_arc : kNoArc);
+      add_face(std::move(v), std::move(roles), std::move(arcs));
+      i += cb;
+      j += ct;
+    }
+  }
+};
+
+}  // namespace
+
+std::vector<std::string> check_disc(const LabelledDisc& disc) {
+  std::vector<std::string> problems;
+  if (disc.faces.empty()) problems.push_back("the disc has no faces");
+  if (disc.directions.size() != disc.faces.size()) {
+    problems.push_back(std::to_string(disc.faces.size()) + " faces but " +
+                       std::to_string(disc.directions.size()) + " direction lists");
+    return problems;
+  }
+  if (!disc.arcs.empty() && disc.arcs.size() != disc.faces.size()) {
+    problems.push_back(std::to_string(disc.faces.size()) + " faces but " +
+                       std::to_string(disc.arcs.size()) + " arc lists");
+  }
+  for (std::size_t f = 0; f < disc.faces.size(); ++f) {
+    const std::vector<int>& face = disc.faces[f];
+    const std::string where = "face " + std::to_string(f);
+    if (face.size() < 3) problems.push_back(where + ": fewer than 3 corners");
+    if (disc.directions[f].size() != face.size()) {
+      problems.push_back(where + ": " + std::to_string(face.size()) + " corners but " +
+                         std::to_string(disc.directions[f].size()) + " side directions");
+      continue;
+    }
+    if (!disc.arcs.empty() && f < disc.arcs.size() && disc.arcs[f].size() != face.size()) {
+      problems.push_back(where + ": " + std::to_string(face.size()) + " corners but " +
+                         std::to_string(disc.arcs[f].size()) + " side arcs");
+    }
+    bool ok = true;
+    for (int v : face) {
+      if (v < 0 || at(v) >= disc.positions.size()) {
+        problems.push_back(where + ": vertex " + std::to_string(v) + " out of range");
+        ok = false;
+      }
+    }
+    for (int d : disc.directions[f]) {
+      if (d < 0 || d > 3) {
+        problems.push_back(where + ": side direction " + std::to_string(d) + " is not 0..3");
+        ok = false;
+      }
+    }
+    if (!ok) continue;
+    if (face_normal(disc, face).norm() <= 1e-12) problems.push_back(where + ": zero area");
+    bool has_course = false;
+    bool has_wale = false;
+    for (int d : disc.directions[f]) (d % 2 == 0 ? has_course : has_wale) = true;
+    if (!has_course && !has_wale) problems.push_back(where + ": no labelled side");
+  }
+  return problems;
+}
+
+RemeshResult remesh_anisotropic(const LabelledDisc& disc, const RemeshParams& params) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::string> input_problems = check_disc(disc);
+  if (!input_problems.empty()) {
+    throw std::invalid_argument("remesh_anisotropic: " + input_problems.front());
+  }
+  if (!(params.course_mm > 0) || !(params.wale_mm > 0)) {
+    throw std::invalid_argument("remesh_anisotropic: course_mm and wale_mm must be positive");
+  }
+  RemeshResult result;
+  std::vector<Triangle> tris = triangulate(disc);
+  const Eigen::VectorXd t = row_time(disc, tris, params);
+  result.stats.solve_seconds = seconds_since(start);
+  const double t_max = t.maxCoeff();
+  const int bands = std::max(1, static_cast<int>(std::lround(t_max)));
+  const double spacing = t_max > 0 ? t_max / bands : 1.0;
+  result.stats.rows = bands;
+  // The fitted gradients now describe t / spacing, as the levels do.
+  const Pieces pieces = slice(disc, tris, t, spacing, bands);
+
+  // Strips: pieces of one band joined across their shared sides.
+  const int num_pieces = static_cast<int>(pieces.band.size());
+  std::vector<int> parent(at(num_pieces));
+  std::iota(parent.begin(), parent.end(), 0);
+  for (std::size_t h = 0; h < pieces.from.size(); ++h) {
+    const int tw = pieces.twin[h];
+    if (tw < 0 || pieces.level[h] >= 0) continue;
+    const int a = find(parent, pieces.piece[h]);
+    const int b = find(parent, pieces.piece[at(tw)]);
+    if (a != b) parent[at(std::max(a, b))] = std::min(a, b);
+  }
+  auto on_boundary = [&](int h) { return pieces.twin[at(h)] < 0 || pieces.level[at(h)] >= 0; };
+  std::map<int, std::vector<std::vector<int>>> loops;  // strip root -> boundary loops
+  std::vector<bool> visited(pieces.from.size(), false);
+  for (int h0 = 0; h0 < static_cast<int>(pieces.from.size()); ++h0) {
+    if (visited[at(h0)] || !on_boundary(h0)) continue;
+    std::vector<int> loop;
+    int h = h0;
+    do {
+      visited[at(h)] = true;
+      loop.push_back(h);
+      int c = pieces.next(h);
+      int guard = 0;
+      while (!on_boundary(c)) {
+        c = pieces.next(pieces.twin[at(c)]);
+        if (++guard > 100000) throw std::logic_error("stitch meshing: vertex walk does not end");
+      }
+      h = c;
+    } while (h != h0 && !visited[at(h)]);
+    if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
+    loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
+  }
+  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}};
+  builder.mesh.course_mm = params.course_mm;
+  builder.mesh.wale_mm = params.wale_mm;
+  // Strips in row order, so level curves are sampled from below first.
+  std::vector<std::pair<int, int>> order;
+  for (const auto& [root, strip_loops] : loops) order.push_back({pieces.band[at(root)], root});
+  std::sort(order.begin(), order.end());
+  for (const auto& [band, root] : order) {
+    const std::vector<std::vector<int>>& strip_loops = loops[root];
+    ++builder.stats.strips;
+    const std::string where =
+        "row " + std::to_string(band) + " strip at piece " + std::to_string(root);
+    if (strip_loops.size() != 1) {
+      builder.problems.push_back(where + ": " + std::to_string(strip_loops.size()) +
+                                 " boundary loops (a strip with a hole: the row time has an "
+                                 "interior extremum)");
+      continue;
+    }
+    builder.strip(where, builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris)));
+  }
+  result.stats.rows = bands;
+  result.stats.strips = builder.stats.strips;
+  result.stats.lenses_skipped = builder.stats.lenses_skipped;
+  result.stats.saddles_split = builder.stats.saddles_split;
+  result.stats.invalid_faces = builder.stats.invalid_faces;
+  result.mesh = std::move(builder.mesh);
+  result.problems = std::move(builder.problems);
+  for (std::string& line : check(result.mesh)) result.problems.push_back(std::move(line));
+  result.stats.total_seconds = seconds_since(start);
+  return result;
+}
+
+namespace {
+
+EdgeLengthStats length_stats(const std::vector<double>& lengths, double target) {
+  EdgeLengthStats s;
+  s.count = static_cast<int>(lengths.size());
+  if (lengths.empty()) return s;
+  s.min_mm = *std::min_element(lengths.begin(), lengths.end());
+  s.max_mm = *std::max_element(lengths.begin(), lengths.end());
+  s.mean_mm =
+      std::accumulate(lengths.begin(), lengths.end(), 0.0) / static_cast<double>(lengths.size());
+  int within = 0;
+  for (double x : lengths) within += std::abs(x - target) <= 0.15 * target;
+  s.within_15_percent = static_cast<double>(within) / static_cast<double>(lengths.size());
+  return s;
+}
+
+}  // namespace
+
+StitchMeshFigures measure(const StitchMesh& mesh) {
+  StitchMeshFigures out;
+  out.faces = static_cast<int>(mesh.faces.size());
+  out.vertices = static_cast<int>(mesh.positions.size());
+  std::map<std::pair<std::uint32_t, std::uint32_t>, EdgeRole> edges;  // undirected -> role
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (const StitchFace& face : mesh.faces) {
+    switch (face.type) {
+      case FaceType::Knit:
+        ++out.knit;
+        break;
+      case FaceType::Increase:
+        ++out.increase;
+        break;
+      case FaceType::Decrease:
+        ++out.decrease;
+        break;
+      case FaceType::ShortRow:
+        ++out.short_row;
+        break;
+    }
+    const std::size_t n = face.vertices.size();
+    Vec3 normal = Vec3::Zero();
+    for (std::size_t i = 0; i < n && i < face.roles.size(); ++i) {
+      const std::uint32_t a = face.vertices[i];
+      const std::uint32_t b = face.vertices[(i + 1) % n];
+      if (a >= mesh.positions.size() || b >= mesh.positions.size()) continue;
+      normal += mesh.positions[a].cross(mesh.positions[b]);
+      edges[{std::min(a, b), std::max(a, b)}] = face.roles[i];
+      ++directed[{a, b}];
+    }
+    out.area_mm2 += 0.5 * normal.norm();
+  }
+  std::vector<double> course;
+  std::vector<double> wale;
+  for (const auto& [e, role] : edges) {
+    const double len = (mesh.positions[e.second] - mesh.positions[e.first]).norm();
+    (role == EdgeRole::Wale ? wale : course).push_back(len);
+  }
+  out.course = length_stats(course, mesh.course_mm);
+  out.wale = length_stats(wale, mesh.wale_mm);
+  // Boundary: directed sides with no reverse; loops by following them.
+  std::map<std::uint32_t, std::uint32_t> next;
+  for (const auto& [e, count] : directed) {
+    if (directed.find({e.second, e.first}) == directed.end()) {
+      next[e.first] = e.second;
+      out.boundary_length_mm += (mesh.positions[e.second] - mesh.positions[e.first]).norm();
+    }
+  }
+  std::map<std::uint32_t, bool> seen;
+  for (const auto& [a, b] : next) {
+    if (seen[a]) continue;
+    ++out.boundary_loops;
+    std::uint32_t v = a;
+    while (!seen[v]) {
+      seen[v] = true;
+      auto it = next.find(v);
+      if (it == next.end()) break;
+      v = it->second;
+    }
+  }
+  std::vector<bool> used(mesh.positions.size(), false);
+  for (const StitchFace& face : mesh.faces) {
+    for (std::uint32_t v : face.vertices) {
+      if (v < used.size()) used[v] = true;
+    }
+  }
+  const int used_vertices = static_cast<int>(std::count(used.begin(), used.end(), true));
+  out.euler_characteristic = used_vertices - static_cast<int>(edges.size()) + out.faces;
+  return out;
+}
+
+StabilityCounts count_stability_rules(const StitchMesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::size_t, std::size_t>> sides;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const StitchFace& face = mesh.faces[f];
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      sides[{face.vertices[i], face.vertices[(i + 1) % face.vertices.size()]}] = {f, i};
+    }
+  }
+  auto pentagon = [](FaceType t) { return t == FaceType::Increase || t == FaceType::Decrease; };
+  StabilityCounts counts;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const StitchFace& face = mesh.faces[f];
+    const std::size_t n = face.vertices.size();
+    bool edge = false;
+    bool stacked = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      auto twin = sides.find({face.vertices[(i + 1) % n], face.vertices[i]});
+      const StitchFace* other = twin == sides.end() ? nullptr : &mesh.faces[twin->second.first];
+      if (pentagon(face.type)) {
+        if (face.roles[i] == EdgeRole::Wale && other == nullptr) edge = true;
+        if (face.roles[i] == EdgeRole::CourseIn && other != nullptr && pentagon(other->type)) {
+          stacked = true;
+        }
+        if (face.roles[i] == EdgeRole::Wale && other != nullptr && pentagon(other->type) &&
+            other->type != face.type && f < twin->second.first) {
+          ++counts.opposed_shaping;
+        }
+      }
+      if (face.type == FaceType::ShortRow && face.roles[i] == EdgeRole::Wale && other != nullptr &&
+          other->type == FaceType::ShortRow && f < twin->second.first) {
+        ++counts.one_stitch_rows;
+      }
+    }
+    counts.edge_shaping += edge;
+    counts.stacked_shaping += stacked;
+  }
+  return counts;
+}
+
+double disc_area_mm2(const LabelledDisc& disc) {
+  double area = 0;
+  for (const std::vector<int>& face : disc.faces) area += 0.5 * face_normal(disc, face).norm();
+  return area;
+}
+
+double disc_boundary_length_mm(const LabelledDisc& disc) {
+  std::unordered_map<std::uint64_t, int> directed;
+  for (const std::vector<int>& face : disc.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i)
+      ++directed[key(face[i], face[(i + 1) % face.size()])];
+  }
+  double length = 0;
+  for (const std::vector<int>& face : disc.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const int a = face[i];
+      const int b = face[(i + 1) % face.size()];
+      if (directed.find(key(b, a)) == directed.end()) {
+        length += (disc.positions[at(b)] - disc.positions[at(a)]).norm();
+      }
+    }
+  }
+  return length;
+}
+
+}  // namespace planner

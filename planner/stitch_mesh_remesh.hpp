@@ -1,0 +1,131 @@
+// Anisotropic stitch meshing (§6): a labelled disc (the cut mesh of §4, or any
+// disc with course/wale side labels) is remeshed into a StitchMesh whose faces
+// have the target course x wale size.
+//
+// Method (docs/stitch-mesh.md has the pictures):
+//  1. §6.1 field: every input face gives a wale direction (its +v sides, and
+//     its +u sides turned a quarter turn); a scalar "row time" t is fitted to
+//     it in least squares (|grad t| = 1 / wale_mm), then straightened a few
+//     times towards unit speed so rows keep their height where the labels
+//     curl.
+//  2. Rows: t is cut at K-1 evenly spaced levels (K = round(t_max), so each
+//     band between levels is one row of height ~wale_mm). Each band component
+//     is a strip: bottom chain (the level below, or a cast-on boundary),
+//     top chain (the level above, or a bind-off boundary) and at most two
+//     side boundaries that become wale edges.
+//  3. §6.2 labels: stitch vertices are placed along each chain every ~course_mm
+//     (shared level curves are sampled once, so rows fit); bottom sides are
+//     course-in, top sides course-out, sides between chains wale.
+//  4. §6.3 faces: each strip is zipped into quads, pentagons (two bottom or two
+//     top sides: decrease / increase) and, where a strip ends in a point,
+//     short-row triangles. Zipping never makes another face as long as one
+//     chain is at most twice the other; faces it cannot make valid are
+//     reported.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "planner/stitch_mesh.hpp"
+
+namespace planner {
+
+// Side directions as in cut.hpp: 0 = +u (course), 1 = +v (wale), 2 = -u, 3 = -v,
+// in the face's own frame; faces are counter-clockwise seen from the front.
+struct LabelledDisc {
+  std::vector<Eigen::Vector3d> positions;  // mm
+  std::vector<std::vector<int>> faces;
+  std::vector<std::vector<int>> directions;  // per face, per side (side i: corner i -> i+1)
+  // Optional: per face, per side, the cut-arc of a boundary side (kNoArc if none).
+  std::vector<std::vector<std::int32_t>> arcs;
+};
+
+// Problems that make a LabelledDisc unusable (sizes, indices, degenerate
+// faces, faces with no course or no wale side). Empty when usable.
+std::vector<std::string> check_disc(const LabelledDisc& disc);
+
+struct RemeshParams {
+  double course_mm = 42.0 / 40.0;
+  double wale_mm = 115.0 / 40.0;
+  int straighten_iterations = 8;  // step 1: fits towards unit row speed
+  // Weight of the labelled direction against the fitted one in each
+  // straightening fit (0: rows only keep their height).
+  double label_weight = 0.1;
+  // A boundary side whose outward normal makes |cos| below this with the row
+  // direction runs along the wale: it becomes a wale side, not a course chain.
+  double side_cosine = 0.3;
+  // Boundary-only course chains shorter than this times wale_mm, lying
+  // between chains of the other kind, are steps of a jagged cut: wale sides.
+  double step_mm_factor = 1.5;
+  // Cost of an increase or decrease in the zip, against the squared relative
+  // error of a wale side's length: higher keeps more knit stitches.
+  double pentagon_cost = 0.05;
+  // Cost of breaking one of the Fig. 7 rules of thumb in the zip
+  // (docs/stitch-mesh.md): shaping at the fabric's edge, shaping on shaping,
+  // an increase beside a decrease.
+  double stability_cost = 0.5;
+};
+
+struct RemeshStats {
+  int rows = 0;            // K
+  int strips = 0;          // band components
+  int lenses_skipped = 0;  // strips of one side on each chain (nothing between them)
+  int saddles_split = 0;   // X-shaped strips around a saddle of the row time, split in two
+  int invalid_faces = 0;   // faces the zip could not make valid (see problems)
+  double solve_seconds = 0;
+  double total_seconds = 0;
+};
+
+struct RemeshResult {
+  StitchMesh mesh;
+  RemeshStats stats;
+  // Why the mesh is not a valid stitch mesh (strips of unexpected shape, and
+  // every line of `check`); empty on success.
+  std::vector<std::string> problems;
+};
+
+// Never throws on bad geometry: problems are returned. The input must pass
+// check_disc (a programming error otherwise: std::invalid_argument).
+RemeshResult remesh_anisotropic(const LabelledDisc& disc, const RemeshParams& params);
+
+// Figures of a stitch mesh, for tests and reports.
+struct EdgeLengthStats {
+  int count = 0;
+  double mean_mm = 0;
+  double min_mm = 0;
+  double max_mm = 0;
+  double within_15_percent = 0;  // fraction of edges within 15% of the target
+};
+struct StitchMeshFigures {
+  int faces = 0;
+  int knit = 0;
+  int increase = 0;
+  int decrease = 0;
+  int short_row = 0;
+  int vertices = 0;
+  int boundary_loops = 0;
+  int euler_characteristic = 0;
+  double area_mm2 = 0;
+  double boundary_length_mm = 0;
+  EdgeLengthStats course;  // sides with a course role, each edge once
+  EdgeLengthStats wale;
+};
+StitchMeshFigures measure(const StitchMesh& mesh);
+
+// §6.3, Fig. 7: configurations that knit unreliably, counted in a finished
+// stitch mesh (docs/stitch-mesh.md has a picture of each).
+struct StabilityCounts {
+  int edge_shaping = 0;     // 1: increase/decrease with a wale side on the boundary
+  int stacked_shaping = 0;  // 2: increase/decrease on a course side of one below
+  int opposed_shaping = 0;  // 3: increase and decrease sharing a wale side
+  int one_stitch_rows = 0;  // 4: two short-row triangles sharing their wale side
+};
+StabilityCounts count_stability_rules(const StitchMesh& mesh);
+
+// Area and boundary length of the disc (for the expected stitch count).
+double disc_area_mm2(const LabelledDisc& disc);
+double disc_boundary_length_mm(const LabelledDisc& disc);
+
+}  // namespace planner

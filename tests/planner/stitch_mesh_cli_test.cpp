@@ -1,0 +1,83 @@
+// wearknit stitch-mesh end to end, on a cut folder written by wearknit cut.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "planner/stitch_mesh.hpp"
+#include "tests/test_support.hpp"
+
+namespace {
+
+using wearknit::test::make_temp_dir;
+using wearknit::test::read_file;
+using wearknit::test::run_wearknit;
+
+TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const auto dir = make_temp_dir("stitch-cli");
+  const auto cut = run_wearknit("cut '" + (shared / "meshes" / "half-torus-qd.obj").string() +
+                                "' --scale 30 -q --no-pictures -o '" + dir.string() + "'");
+  ASSERT_EQ(cut.exit_code, 0) << cut.err;
+  const auto result = run_wearknit("stitch-mesh '" + dir.string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("stitch mesh: "), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "stitch-mesh.obj"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "stitch-mesh.png"));
+  std::istringstream smobj(read_file(dir / "stitch-mesh.smobj"));
+  knitout::DiagnosticSink sink;
+  const auto mesh = planner::parse_smobj(smobj, "stitch-mesh.smobj", sink);
+  ASSERT_TRUE(mesh);
+  EXPECT_DOUBLE_EQ(mesh->course_mm, 1.05);
+  EXPECT_DOUBLE_EQ(mesh->wale_mm, 2.875);
+  const auto report = nlohmann::json::parse(read_file(dir / "report.json"));
+  EXPECT_TRUE(report.contains("cut_edges"));  // the cut stage's figures are kept
+  const auto& s = report.at("stitch_mesh");
+  EXPECT_EQ(s.at("faces").at("total").get<std::size_t>(), mesh->faces.size());
+  EXPECT_EQ(s.at("gauge").at("from"), "swatch 40x40:42x115");
+  EXPECT_EQ(s.at("boundary_loops"), 1);
+
+  // --stitch-mm replaces the swatch; a run again replaces only its own member.
+  const auto again =
+      run_wearknit("stitch-mesh '" + dir.string() + "' --stitch-mm 2x3 -q --no-picture");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(again.out, "");
+  const auto report2 = nlohmann::json::parse(read_file(dir / "report.json"));
+  EXPECT_TRUE(report2.contains("cut_edges"));
+  EXPECT_EQ(report2.at("stitch_mesh").at("gauge").at("course_mm"), 2.0);
+  EXPECT_LT(report2.at("stitch_mesh").at("faces").at("total").get<int>(),
+            s.at("faces").at("total").get<int>());
+}
+
+TEST(StitchMeshCliTest, RejectsBadGaugeOptions) {
+  const auto dir = make_temp_dir("stitch-cli-bad");
+  auto r = run_wearknit("stitch-mesh '" + dir.string() + "' --swatch 40x40");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "wearknit stitch-mesh: `40x40` is not STITCHESxROWS:WIDTHxHEIGHT_MM with positive "
+            "numbers (e.g. 40x40:42x115)\n");
+  r = run_wearknit("stitch-mesh '" + dir.string() + "' --swatch 40x40:42x115 --stitch-mm 1x2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "wearknit stitch-mesh: give --swatch or --stitch-mm, not both\n");
+  r = run_wearknit("stitch-mesh '" + dir.string() + "' --gauge 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "wearknit stitch-mesh: the gauge (needles per inch) must be positive\n");
+}
+
+TEST(StitchMeshCliTest, SaysWhatIsMissingAndWritesNothing) {
+  const auto dir = make_temp_dir("stitch-cli-missing");
+  auto r = run_wearknit("stitch-mesh '" + (dir / "nowhere").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            (dir / "nowhere").string() +
+                ": error: [P020] no such folder (run `wearknit cut GARMENT -o DIR` first)\n");
+  r = run_wearknit("stitch-mesh '" + dir.string() + "'");  // a folder without cut files
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("[P020]"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "stitch-mesh.smobj"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "report.json"));
+}
+
+}  // namespace
