@@ -16,10 +16,10 @@ namespace {
 planner::LabelledDisc g_disc;
 
 void StitchMesh(benchmark::State& state) {
-  const planner::RemeshParams params;
+  const planner::AnisoRemeshParams params;
   std::size_t faces = 0;
   for (auto _ : state) {
-    const planner::RemeshResult result = planner::remesh_anisotropic(g_disc, params);
+    const planner::AnisoRemeshResult result = planner::remesh_anisotropic(g_disc, params);
     if (!result.problems.empty()) {
       state.SkipWithError(("stitch meshing failed: " + result.problems.front()).c_str());
       return;

@@ -31,7 +31,7 @@ std::string draw_stitch_mesh(const StitchMesh& mesh, const std::string& png_path
 struct StitchMeshReport {
   StitchGauge gauge;
   StitchMeshFigures figures;
-  RemeshStats stats;
+  AnisoRemeshStats stats;
   StabilityCounts stability;
   double disc_area_mm2 = 0;
   double seconds = 0;  // the whole stage: read, mesh, write

@@ -127,7 +127,7 @@ std::array<Vec3, 3> hat_gradients(const LabelledDisc& disc, const Triangle& t) {
 // Least-squares fit of t to the target gradients (Poisson equation with
 // the cotangent Laplacian), then straightening fits towards unit speed.
 Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
-                         const RemeshParams& params) {
+                         const AnisoRemeshParams& params) {
   const int n = static_cast<int>(disc.positions.size());
   std::vector<Eigen::Triplet<double>> entries;
   std::vector<std::array<Vec3, 3>> grads(tris.size());
@@ -347,7 +347,7 @@ struct Chain {
 
 struct Builder {
   const LabelledDisc& disc;
-  const RemeshParams& params;
+  const AnisoRemeshParams& params;
   const Pieces& pieces;
   StitchMesh mesh;
   std::unordered_map<int, int> anchor;  // piece vertex -> stitch vertex
@@ -357,7 +357,7 @@ struct Builder {
   std::vector<std::vector<int>> curve_samples;
   std::vector<int> curve_first;
   std::vector<std::string> problems;
-  RemeshStats stats;
+  AnisoRemeshStats stats;
   // Bottom sides (as the row above walks them) of increases and decreases.
   std::unordered_set<std::uint64_t> shaped_below;
 
@@ -1213,7 +1213,7 @@ std::vector<std::string> check_disc(const LabelledDisc& disc) {
   return problems;
 }
 
-RemeshResult remesh_anisotropic(const LabelledDisc& disc, const RemeshParams& params) {
+AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemeshParams& params) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::string> input_problems = check_disc(disc);
   if (!input_problems.empty()) {
@@ -1222,7 +1222,7 @@ RemeshResult remesh_anisotropic(const LabelledDisc& disc, const RemeshParams& pa
   if (!(params.course_mm > 0) || !(params.wale_mm > 0)) {
     throw std::invalid_argument("remesh_anisotropic: course_mm and wale_mm must be positive");
   }
-  RemeshResult result;
+  AnisoRemeshResult result;
   std::vector<Triangle> tris = triangulate(disc);
   const Eigen::VectorXd t = row_time(disc, tris, params);
   result.stats.solve_seconds = seconds_since(start);

@@ -46,7 +46,7 @@ struct LabelledDisc {
 // faces, faces with no course or no wale side). Empty when usable.
 std::vector<std::string> check_disc(const LabelledDisc& disc);
 
-struct RemeshParams {
+struct AnisoRemeshParams {
   double course_mm = 42.0 / 40.0;
   double wale_mm = 115.0 / 40.0;
   int straighten_iterations = 8;  // step 1: fits towards unit row speed
@@ -68,7 +68,7 @@ struct RemeshParams {
   double stability_cost = 0.5;
 };
 
-struct RemeshStats {
+struct AnisoRemeshStats {
   int rows = 0;            // K
   int strips = 0;          // band components
   int lenses_skipped = 0;  // strips of one side on each chain (nothing between them)
@@ -78,9 +78,9 @@ struct RemeshStats {
   double total_seconds = 0;
 };
 
-struct RemeshResult {
+struct AnisoRemeshResult {
   StitchMesh mesh;
-  RemeshStats stats;
+  AnisoRemeshStats stats;
   // Why the mesh is not a valid stitch mesh (strips of unexpected shape, and
   // every line of `check`); empty on success.
   std::vector<std::string> problems;
@@ -88,7 +88,7 @@ struct RemeshResult {
 
 // Never throws on bad geometry: problems are returned. The input must pass
 // check_disc (a programming error otherwise: std::invalid_argument).
-RemeshResult remesh_anisotropic(const LabelledDisc& disc, const RemeshParams& params);
+AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemeshParams& params);
 
 // Figures of a stitch mesh, for tests and reports.
 struct EdgeLengthStats {

@@ -14,10 +14,10 @@ namespace {
 namespace sd = stitch_discs;
 
 // Everything issue 8 asks of a stitch mesh made from a disc of known area.
-void expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2, const RemeshParams& params,
-                             const std::string& name) {
+void expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2,
+                             const AnisoRemeshParams& params, const std::string& name) {
   SCOPED_TRACE(name);
-  const RemeshResult result = remesh_anisotropic(disc, params);
+  const AnisoRemeshResult result = remesh_anisotropic(disc, params);
   const StitchMesh& mesh = result.mesh;
   for (const std::string& p : result.problems) ADD_FAILURE() << p;
   EXPECT_TRUE(check(mesh).empty());
@@ -47,8 +47,8 @@ void expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2, const Re
       result.stats.total_seconds);
 }
 
-RemeshParams default_params() {
-  return RemeshParams{};
+AnisoRemeshParams default_params() {
+  return AnisoRemeshParams{};
 }
 
 TEST(StitchMeshRemeshTest, MeshesAFlatRectangleIntoKnitQuads) {

@@ -23,12 +23,12 @@ namespace {
 
 struct Meshed {
   LabelledDisc disc;
-  RemeshResult result;
+  AnisoRemeshResult result;
 };
 
-Meshed mesh_shared(const std::filesystem::path& file, const RemeshParams& params = {}) {
+Meshed mesh_shared(const std::filesystem::path& file, const AnisoRemeshParams& params = {}) {
   knitout::DiagnosticSink sink;
-  std::optional<PolygonMesh> mesh = load_mesh(file.string(), {}, sink);
+  std::optional<SurfaceMesh> mesh = load_mesh(file.string(), {}, sink);
   EXPECT_TRUE(mesh) << file;
   if (!mesh) return {};
   const Vec3 size = bounding_box_size(*mesh);
@@ -56,7 +56,7 @@ void expect_valid(const Meshed& m) {
 // edges within 15%, stitches within 10% of area / (course x wale).
 void expect_sizes(const Meshed& m) {
   const StitchMeshFigures f = measure(m.result.mesh);
-  const RemeshParams p;
+  const AnisoRemeshParams p;
   EXPECT_NEAR(f.course.mean_mm / p.course_mm, 1.0, 0.05);
   EXPECT_NEAR(f.wale.mean_mm / p.wale_mm, 1.0, 0.05);
   EXPECT_GE(f.course.within_15_percent, 0.9);
@@ -80,7 +80,7 @@ class StitchMeshSharedTest : public ::testing::TestWithParam<std::string> {};
 // docs/stitch-mesh.md).
 TEST_P(StitchMeshSharedTest, MeetsIssueSizes) {
   WEARKNIT_REQUIRE_SHARED(shared);
-  RemeshParams sizes_only;
+  AnisoRemeshParams sizes_only;
   sizes_only.stability_cost = 0;
   const Meshed m = mesh_shared(shared / "meshes" / (GetParam() + ".obj"), sizes_only);
   expect_valid(m);
@@ -93,7 +93,7 @@ class StitchMeshSharedRulesTest : public ::testing::TestWithParam<std::string> {
 
 TEST_P(StitchMeshSharedRulesTest, RulesOfThumbLeaveFewerUnstableShapings) {
   WEARKNIT_REQUIRE_SHARED(shared);
-  RemeshParams sizes_only;
+  AnisoRemeshParams sizes_only;
   sizes_only.stability_cost = 0;
   const auto file = shared / "meshes" / (GetParam() + ".obj");
   const Meshed with_rules = mesh_shared(file);
