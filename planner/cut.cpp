@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "planner/union_find.hpp"
+
 namespace planner {
 
 namespace {
@@ -87,19 +89,6 @@ std::vector<int> motorcycle_graph(const HalfedgeMesh& q, const FieldLabels& labe
   }
   return crossings;
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[at(x)] != x) {
-      parent[at(x)] = parent[at(parent[at(x)])];
-      x = parent[at(x)];
-    }
-    return x;
-  }
-  void unite(int a, int b) { parent[at(find(a))] = find(b); }
-};
 
 // The disc: corners glued across every edge that is neither cut nor boundary.
 void build_disc(CutMesh& cut) {

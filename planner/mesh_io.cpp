@@ -13,6 +13,8 @@
 #include <ostream>
 #include <unordered_map>
 
+#include "planner/union_find.hpp"
+
 namespace planner {
 
 namespace {
@@ -117,20 +119,6 @@ std::string lower(std::string_view text) {
 bool supported_extension(const std::string& ext) {
   return ext == "obj" || ext == "off" || ext == "ply" || ext == "stl";
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[static_cast<std::size_t>(x)] != x) {
-      parent[static_cast<std::size_t>(x)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-      x = parent[static_cast<std::size_t>(x)];
-    }
-    return x;
-  }
-  void unite(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
-};
 
 std::uint64_t pair_key(int a, int b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |

@@ -15,6 +15,7 @@
 
 #include "knitout/diagnostic.hpp"
 #include "planner/mesh_io.hpp"
+#include "planner/union_find.hpp"
 
 namespace planner {
 
@@ -254,19 +255,6 @@ std::pair<Vec3, Vec3> compatible_positions(const Vec3& p0, const Vec3& n0, const
   }
   return result;
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[at(x)] != x) {
-      parent[at(x)] = parent[at(parent[at(x)])];
-      x = parent[at(x)];
-    }
-    return x;
-  }
-  void unite(int a, int b) { parent[at(find(a))] = find(b); }
-};
 
 // A vertex whose faces form several fans (sheets touching at a point) gets
 // one copy per fan, so the surface becomes a manifold there.
