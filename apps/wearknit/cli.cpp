@@ -101,6 +101,18 @@ std::optional<DiagnosticFormat> parse_diagnostic_format(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<DiagnosticFormat> text_or_json_format(const po::variables_map& values,
+                                                    const std::string& format_name,
+                                                    std::string_view verb_name, Context& context) {
+  auto format = parse_diagnostic_format(values.count("json") != 0 ? "json" : format_name);
+  if (!format || *format == DiagnosticFormat::Junit || *format == DiagnosticFormat::Github) {
+    context.err << "wearknit " << verb_name << ": --format takes text or json, not '" << format_name
+                << "'\n";
+    return std::nullopt;
+  }
+  return format;
+}
+
 void print_diagnostics(Context& context, const std::vector<knitout::Diagnostic>& diagnostics,
                        DiagnosticFormat format) {
   switch (format) {

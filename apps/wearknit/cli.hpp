@@ -51,6 +51,11 @@ std::optional<int> parse_options(
 // Diagnostic output formats shared by the verbs that read input.
 enum class DiagnosticFormat { Text, Json, Junit, Github };
 std::optional<DiagnosticFormat> parse_diagnostic_format(std::string_view name);
+// For verbs whose diagnostics are text or JSON (--format text|json, --json):
+// the format asked for, or nullopt after printing the usage error.
+std::optional<DiagnosticFormat> text_or_json_format(
+    const boost::program_options::variables_map& values, const std::string& format_name,
+    std::string_view verb_name, Context& context);
 // Prints diagnostics: text to `err`, json to `out` (as --json asks).
 void print_diagnostics(Context& context, const std::vector<knitout::Diagnostic>& diagnostics,
                        DiagnosticFormat format);

@@ -60,11 +60,8 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
   if (auto code = parse_options(args, *find_verb("cut"), options, positional, values, context)) {
     return *code;
   }
-  auto format = parse_diagnostic_format(values.count("json") ? "json" : format_name);
-  if (!format || *format == DiagnosticFormat::Junit || *format == DiagnosticFormat::Github) {
-    context.err << "wearknit cut: --format takes text or json, not '" << format_name << "'\n";
-    return kExitUsage;
-  }
+  const auto format = text_or_json_format(values, format_name, "cut", context);
+  if (!format) return kExitUsage;
   const auto mm_per_unit = planner::mm_per_unit(units);
   if (!mm_per_unit) {
     context.err << "wearknit cut: --units takes mm, cm or m, not '" << units << "'\n";

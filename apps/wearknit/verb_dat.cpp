@@ -36,11 +36,8 @@ int run_dat(const std::vector<std::string>& args, Context& context) {
   if (auto code = parse_options(args, *find_verb("dat"), options, positional, values, context)) {
     return *code;
   }
-  auto format = parse_diagnostic_format(values.count("json") ? "json" : format_name);
-  if (!format || *format == DiagnosticFormat::Junit || *format == DiagnosticFormat::Github) {
-    context.err << "wearknit dat: --format takes text or json, not '" << format_name << "'\n";
-    return kExitUsage;
-  }
+  const auto format = text_or_json_format(values, format_name, "dat", context);
+  if (!format) return kExitUsage;
   const dat::Profile* profile = dat::find_profile(machine);
   if (profile == nullptr) {
     context.err << "wearknit dat: machine '" << machine << "' has no DAT profile; profiles:";

@@ -29,11 +29,8 @@ int run_fmt(const std::vector<std::string>& args, Context& context) {
   if (auto code = parse_options(args, *find_verb("fmt"), options, positional, values, context)) {
     return *code;
   }
-  auto format = parse_diagnostic_format(values.count("json") ? "json" : format_name);
-  if (!format || *format == DiagnosticFormat::Junit || *format == DiagnosticFormat::Github) {
-    context.err << "wearknit fmt: --format takes text or json, not '" << format_name << "'\n";
-    return kExitUsage;
-  }
+  const auto format = text_or_json_format(values, format_name, "fmt", context);
+  if (!format) return kExitUsage;
 
   knitout::DiagnosticSink sink;
   knitout::Program program;

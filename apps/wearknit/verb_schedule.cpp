@@ -73,11 +73,8 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
           parse_options(args, *find_verb("schedule"), options, positional, values, context)) {
     return *code;
   }
-  auto format = parse_diagnostic_format(values.count("json") ? "json" : format_name);
-  if (!format || *format == DiagnosticFormat::Junit || *format == DiagnosticFormat::Github) {
-    context.err << "wearknit schedule: --format takes text or json, not '" << format_name << "'\n";
-    return kExitUsage;
-  }
+  const auto format = text_or_json_format(values, format_name, "schedule", context);
+  if (!format) return kExitUsage;
   if (values.count("time-budget") && !values["trials"].defaulted()) {
     context.err << "wearknit schedule: give --trials or --time-budget, not both\n";
     return kExitUsage;

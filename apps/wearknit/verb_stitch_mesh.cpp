@@ -59,12 +59,8 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
           parse_options(args, *find_verb("stitch-mesh"), options, positional, values, context)) {
     return *code;
   }
-  auto format = parse_diagnostic_format(values.count("json") ? "json" : format_name);
-  if (!format || *format == DiagnosticFormat::Junit || *format == DiagnosticFormat::Github) {
-    context.err << "wearknit stitch-mesh: --format takes text or json, not '" << format_name
-                << "'\n";
-    return kExitUsage;
-  }
+  const auto format = text_or_json_format(values, format_name, "stitch-mesh", context);
+  if (!format) return kExitUsage;
   std::string problem;
   if (values.count("stitch-mm") != 0) {
     if (!values["swatch"].defaulted()) {
