@@ -15,10 +15,10 @@ echo "== format check"
 scripts/check-format.sh
 
 echo "== strict build + tests"
-scripts/build.sh strict >/dev/null
+scripts/build.sh strict
 ctest --test-dir build --output-on-failure --parallel "$WEARKNIT_JOBS" --timeout 900
 
 echo "== sanitizer build + tests"
-scripts/build.sh sanitize >/dev/null
+scripts/build.sh sanitize
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure --parallel "$WEARKNIT_JOBS" --timeout 1200
