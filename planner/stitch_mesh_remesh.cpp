@@ -345,6 +345,22 @@ struct Chain {
   std::vector<Run> runs;
 };
 
+// Neighbouring boundary runs of a chain are one stretch of boundary: join
+// them into one run (isoline runs stay apart).
+void join_boundary_runs(Chain& chain) {
+  std::vector<Run> joined;
+  for (Run& r : chain.runs) {
+    if (!joined.empty() && !joined.back().level && !r.level) {
+      joined.back().halfedges.insert(joined.back().halfedges.end(), r.halfedges.begin(),
+                                     r.halfedges.end());
+      joined.back().length += r.length;
+    } else {
+      joined.push_back(std::move(r));
+    }
+  }
+  chain.runs = std::move(joined);
+}
+
 struct Builder {
   const LabelledDisc& disc;
   const AnisoRemeshParams& params;
@@ -686,19 +702,7 @@ struct Builder {
       }
     }
     // Neighbouring boundary runs of one chain are one stretch of boundary.
-    for (Chain& c : out) {
-      std::vector<Run> joined;
-      for (Run& r : c.runs) {
-        if (!joined.empty() && !joined.back().level && !r.level) {
-          joined.back().halfedges.insert(joined.back().halfedges.end(), r.halfedges.begin(),
-                                         r.halfedges.end());
-          joined.back().length += r.length;
-        } else {
-          joined.push_back(std::move(r));
-        }
-      }
-      c.runs = std::move(joined);
-    }
+    for (Chain& c : out) join_boundary_runs(c);
     // Short boundary runs at the ends of a course chain beside a wale side
     // join the wale side: a wale edge, not a sliver course edge.
     for (std::size_t i = 0; i < out.size(); ++i) {
@@ -902,19 +906,7 @@ struct Builder {
       }
       sides[k].runs.clear();
     }
-    for (Chain& c : courses) {
-      std::vector<Run> joined;
-      for (Run& r : c.runs) {
-        if (!joined.empty() && !joined.back().level && !r.level) {
-          joined.back().halfedges.insert(joined.back().halfedges.end(), r.halfedges.begin(),
-                                         r.halfedges.end());
-          joined.back().length += r.length;
-        } else {
-          joined.push_back(std::move(r));
-        }
-      }
-      c.runs = std::move(joined);
-    }
+    for (Chain& c : courses) join_boundary_runs(c);
     Chain edge;  // the splitting wale edge: no boundary runs
     edge.side = Side::Wale;
     auto with_side = [&](std::vector<Chain>& out, std::size_t k) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <boost/program_options.hpp>
+#include <chrono>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -47,6 +48,11 @@ std::optional<int> parse_options(
     boost::program_options::options_description& options,
     const boost::program_options::positional_options_description& positional,
     boost::program_options::variables_map& values, Context& context);
+
+// Wall-clock seconds since `start`, for the stage timings verbs report.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // Diagnostic output formats shared by the verbs that read input.
 enum class DiagnosticFormat { Text, Json, Junit, Github };

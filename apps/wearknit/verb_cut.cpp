@@ -16,14 +16,6 @@ namespace wearknit::cli {
 
 namespace po = boost::program_options;
 
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 int run_cut(const std::vector<std::string>& args, Context& context) {
   std::string input;
   std::string output;
