@@ -128,6 +128,10 @@ class ClothSimulation {
 
   // Least distance of any vertex to the wearer (mesh units).
   double min_distance() const;
+  // Whether every vertex is at least `distance` (mesh units) from the
+  // wearer: min_distance() >= distance, but it stops at the first vertex
+  // that is nearer, which is the first one looked at while the garment is on.
+  bool all_farther_than(double distance) const;
   const std::vector<Vec3>& positions() const { return x_; }
   const std::vector<Spring>& springs() const { return springs_; }
   const ClothMesh& mesh() const { return mesh_; }
@@ -147,6 +151,7 @@ class ClothSimulation {
   std::vector<Vec3> contact_normal_;    // per vertex, this step's contact plane:
   std::vector<double> contact_offset_;  // distance(p) ≈ offset + normal·p
   std::uint64_t projections_ = 0;
+  mutable std::size_t nearest_hint_ = 0;  // all_farther_than's first vertex to look at
   double plane_distance(int i) const { return contact_offset_[i] + contact_normal_[i].dot(p_[i]); }
   void collide_vertices();
   void collide_edges();
