@@ -179,9 +179,8 @@ std::string recut_folder(const std::string& dir, std::uint64_t seed) {
 
 CutFolderStudy study_cut_folder(const std::string& dir, CutFolder folder,
                                 const cloth::SignedDistanceField& wearer,
-                                const WearabilityParams& params, int runs,
-                                const RecutParams& recut, knitout::DiagnosticSink& sink,
-                                const ProgressCallback& progress,
+                                const WearabilityParams& params, int runs, const RecutParams& recut,
+                                knitout::DiagnosticSink& sink, const ProgressCallback& progress,
                                 const std::function<void(const CutAttempt&)>& on_attempt) {
   CutFolderStudy result;
   result.folder = std::move(folder);
@@ -273,8 +272,8 @@ std::string record_attempts(const std::string& dir, const CutFolderStudy& result
                               {"recut", result.recut()},
                               {"cut_seed", seed ? json(*seed) : json(nullptr)},
                               {"cut_attempts", attempts_json(result.attempts)}};
-  return knitout::write_file_atomically(
-      path.string(), [&](std::ostream& out) { out << report->dump(1) << '\n'; });
+  return knitout::write_file_atomically(path.string(),
+                                        [&](std::ostream& out) { out << report->dump(1) << '\n'; });
 }
 
 }  // namespace planner

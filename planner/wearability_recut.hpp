@@ -44,7 +44,7 @@ struct CutAttempt {
   int attempt = 0;
   std::optional<std::uint64_t> cut_seed;  // unknown when the folder has no report.json
   int arcs = 0;
-  bool wearable = false;            // the garment with every cut open came off
+  bool wearable = false;             // the garment with every cut open came off
   std::vector<TrialOutcome> trials;  // of that initial test (run 0)
   std::string failure;               // why this attempt could not be made (re-cut failed)
 };
@@ -66,8 +66,8 @@ std::uint64_t recut_seed(std::uint64_t wearability_seed, int attempt);
 std::string recut_folder(const std::string& dir, std::uint64_t seed);
 
 struct CutFolderStudy {
-  CutFolder folder;  // of the cut finally in the folder
-  LacingStudy study;  // of that cut
+  CutFolder folder;                  // of the cut finally in the folder
+  LacingStudy study;                 // of that cut
   std::vector<CutAttempt> attempts;  // every cut tried, in order; the last is `folder`'s
   bool wearable() const { return chosen_run(study) >= 0; }
   // The folder's files were rewritten by a re-cut (an attempt after the
@@ -84,8 +84,8 @@ struct CutFolderStudy {
 // has `failure`). Problems reading a re-cut folder are diagnostics.
 CutFolderStudy study_cut_folder(const std::string& dir, CutFolder folder,
                                 const cloth::SignedDistanceField& wearer,
-                                const WearabilityParams& params, int runs,
-                                const RecutParams& recut, knitout::DiagnosticSink& sink,
+                                const WearabilityParams& params, int runs, const RecutParams& recut,
+                                knitout::DiagnosticSink& sink,
                                 const ProgressCallback& progress = {},
                                 const std::function<void(const CutAttempt&)>& on_attempt = {});
 
