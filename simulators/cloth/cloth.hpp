@@ -150,6 +150,12 @@ class ClothSimulation {
   std::vector<Vec3> x_, v_, p_;
   std::vector<Vec3> contact_normal_;    // per vertex, this step's contact plane:
   std::vector<double> contact_offset_;  // distance(p) ≈ offset + normal·p
+  // The field at x_[i], when the last exact vertex collision looked it up
+  // there and did not move the vertex: the next step starts from it instead
+  // of a second, identical lookup.
+  std::vector<char> lookup_valid_;
+  std::vector<double> lookup_distance_;
+  std::vector<Vec3> lookup_normal_;
   std::uint64_t projections_ = 0;
   mutable std::size_t nearest_hint_ = 0;  // all_farther_than's first vertex to look at
   double plane_distance(int i) const { return contact_offset_[i] + contact_normal_[i].dot(p_[i]); }
