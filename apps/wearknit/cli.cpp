@@ -25,8 +25,9 @@ const std::vector<Verb>& verbs() {
        run_demo},
       {"wearability",
        "wearability DIR --wearer WEARER.obj [--trials K] [--runs R] [--seed N] [--threads T] "
-       "[--frames OUT/]",
-       "label each cut-arc sew or lace by stripping the garment off the wearer (§5)",
+       "[--recut-limit N] [--frames OUT/]",
+       "label each cut-arc sew or lace by stripping the garment off the wearer; re-cut an "
+       "unwearable cut (§5)",
        run_wearability},
       {"schedule", "schedule DIR [--trials N | --time-budget S] [--pattern plain|seed] [--seed N]",
        "knitting schedule and knitout pieces for a plan folder's stitch mesh (§7)", run_schedule},

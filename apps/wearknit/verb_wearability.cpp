@@ -14,6 +14,7 @@
 #include "knitout/output_file.hpp"
 #include "planner/wearability.hpp"
 #include "planner/wearability_io.hpp"
+#include "planner/wearability_recut.hpp"
 
 namespace wearknit::cli {
 
@@ -138,6 +139,7 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   std::string dir, wearer_path, frames_dir;
   planner::WearabilityParams params;
   int runs = 1, frame_every = 10, resolution = cloth::SdfParams{}.resolution;
+  planner::RecutParams recut;
   std::uint64_t seed = 1;
   po::options_description options("options");
   options.add_options()("dir", po::value<std::string>(&dir)->required(),
@@ -148,6 +150,8 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
       "runs", po::value<int>(&runs)->default_value(1),
       "R: eliminations with different arc orders (probability of lacing, Fig. 18)")(
       "seed", po::value<std::uint64_t>(&seed)->default_value(1), "random seed")(
+      "recut-limit", po::value<int>(&recut.limit)->default_value(recut.limit),
+      "re-cuts with other seeds when the garment with every cut open is not wearable (§5)")(
       "threads", po::value<int>(&params.threads)->default_value(0),
       "threads running trials (0 = all cores)")(
       "max-steps", po::value<int>(&params.cloth.max_steps)->default_value(params.cloth.max_steps),
@@ -167,34 +171,17 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   }
   params.seed = seed;
   if (params.trials < 1 || runs < 1 || params.cloth.max_steps < 1 || resolution < 8 ||
-      frame_every < 1) {
+      frame_every < 1 || recut.limit < 0) {
     context.err << "wearknit wearability: --trials, --runs, --max-steps and --frame-every must be "
-                   "positive, --resolution at least 8\n";
+                   "positive, --recut-limit not negative, --resolution at least 8\n";
     return kExitUsage;
   }
   const bool show_progress = context.out_is_terminal && values.count("quiet") == 0;
 
   knitout::DiagnosticSink sink;
-  const std::string mesh_path = (fs::path(dir) / "cut-mesh.obj").string();
   const std::string cuts_path = (fs::path(dir) / "cuts.json").string();
-  const auto cut_mesh = planner::read_obj_file(mesh_path, sink);
+  auto folder = planner::read_cut_folder(dir, sink);
   const auto wearer = planner::read_obj_file(wearer_path, sink);
-  nlohmann::json cuts;
-  {
-    std::ifstream in(cuts_path);
-    if (!in) {
-      sink.error(cuts_path, 0, 0, "W004", "cannot open file");
-    } else {
-      try {
-        cuts = nlohmann::json::parse(in);
-      } catch (const nlohmann::json::parse_error& e) {
-        sink.error(cuts_path, 0, 0, "W010", std::string("not JSON: ") + e.what());
-      }
-    }
-  }
-  std::optional<planner::CoverMesh> cover;
-  if (cut_mesh && !sink.has_errors())
-    cover = planner::read_cover_mesh(*cut_mesh, cuts, cuts_path, sink);
   print_diagnostics(context, sink.diagnostics(), DiagnosticFormat::Text);
   if (sink.has_errors()) {
     const bool missing = std::any_of(sink.diagnostics().begin(), sink.diagnostics().end(),
@@ -214,10 +201,32 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
     context.out << "\rrun " << p.run + 1 << '/' << p.runs << "  arcs tested " << p.tested << '/'
                 << p.arcs << "  sewn " << p.sewn << "\033[K" << std::flush;
   };
-  const planner::LacingStudy study = planner::study_lacing(*cover, field, params, runs, progress);
+  // §5: a cut whose garment does not come off with every cut open is cut
+  // again with another seed, up to --recut-limit times.
+  auto seed_text = [](const std::optional<std::uint64_t>& s) {
+    return s ? "seed " + std::to_string(*s) : std::string("an unrecorded seed");
+  };
+  const auto on_attempt = [&](const planner::CutAttempt& a) {
+    if (show_progress) context.out << "\r\033[K";
+    if (values.count("quiet") != 0 || a.wearable) return;
+    if (!a.failure.empty()) {
+      context.out << "cannot cut again: " << a.failure << '\n';
+    } else if (a.attempt < recut.limit) {
+      context.out << "the cut with " << seed_text(a.cut_seed)
+                  << " does not come off the wearer with every cut open; cutting again with seed "
+                  << planner::recut_seed(params.seed, a.attempt + 1) << '\n';
+    }
+  };
+  knitout::DiagnosticSink recut_sink;
+  planner::CutFolderStudy folder_study = planner::study_cut_folder(
+      dir, std::move(*folder), field, params, runs, recut, recut_sink, progress, on_attempt);
   if (show_progress) context.out << "\r\033[K";
+  print_diagnostics(context, recut_sink.diagnostics(), DiagnosticFormat::Text);
+  const planner::LacingStudy& study = folder_study.study;
+  const planner::CoverMesh* cover = &folder_study.folder.cover;
+  nlohmann::json& cuts = folder_study.folder.cuts;
 
-  planner::annotate_cuts(cuts, study, params);
+  planner::annotate_cut_folder(folder_study, params);
   const int chosen = planner::chosen_run(study);
   std::vector<double> lace_share(cover->arcs.size(), 1.0);
   if (chosen >= 0) {
@@ -235,6 +244,7 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
     failure = knitout::write_file_atomically(
         picture_path, [&](std::ostream& out) { draw_layout(out, *cover, lace_share); });
   }
+  if (failure.empty()) failure = planner::record_attempts(dir, folder_study);
   if (!failure.empty()) {
     context.err << "wearknit wearability: " << failure << '\n';
     return kExitUsage;
@@ -243,7 +253,26 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   if (chosen < 0) {
     context.err << cuts_path << ": error: [W020] the garment with every cut open did not come off "
                 << "the wearer in " << params.trials << " trials of " << params.cloth.max_steps
-                << " steps; cut it again with another seed (every arc is labelled lace)\n";
+                << " steps, ";
+    std::vector<std::string> made;
+    std::string not_made;
+    for (const auto& a : folder_study.attempts) {
+      if (!a.failure.empty()) {
+        not_made = a.failure;
+      } else {
+        made.push_back(seed_text(a.cut_seed) +
+                       (a.attempt == 0 ? std::string(" (the folder's)")
+                                       : " (re-cut " + std::to_string(a.attempt) + ")"));
+      }
+    }
+    context.err << (made.size() == 1 ? "with the cut of " : "with each of the cuts of ");
+    for (std::size_t i = 0; i < made.size(); ++i) context.err << (i ? ", " : "") << made[i];
+    if (!not_made.empty()) {
+      context.err << "; cannot cut again: " << not_made;
+    } else if (made.size() == 1) {
+      context.err << " (--recut-limit " << recut.limit << ")";
+    }
+    context.err << "; every arc is labelled lace\n";
     return kExitInvalid;
   }
   const auto& result = study.runs[chosen];
@@ -258,6 +287,10 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   context.out << "wearability: " << cover->arcs.size() << " arcs, " << sewn << " sew, "
               << cover->arcs.size() - sewn << " lace";
   if (runs > 1) context.out << " (run " << chosen + 1 << " of " << runs << ", most sewn)";
+  if (folder_study.recut()) {
+    context.out << "; re-cut with " << seed_text(folder_study.cut_seed()) << " (attempt "
+                << folder_study.attempts.size() - 1 << " of " << recut.limit << ")";
+  }
   context.out << "; " << steps << " steps in " << std::fixed << std::setprecision(1) << seconds
               << " s\n"
               << "wrote " << cuts_path << " and " << picture_path << '\n';

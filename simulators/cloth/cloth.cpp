@@ -170,6 +170,9 @@ ClothSimulation::ClothSimulation(const ClothMesh& garment, const SignedDistanceF
   p_ = x_;
   contact_normal_.assign(x_.size(), Vec3::Zero());
   contact_offset_.assign(x_.size(), 0.0);
+  lookup_valid_.assign(x_.size(), 0);
+  lookup_distance_.assign(x_.size(), 0.0);
+  lookup_normal_.assign(x_.size(), Vec3::Zero());
 }
 
 void ClothSimulation::collide_vertices() {
@@ -179,7 +182,15 @@ void ClothSimulation::collide_vertices() {
     if (plane_distance(i) > 2 * clearance) return;
     Vec3 normal;
     const double d = wearer_.value_and_gradient(p_[i], normal);
-    if (d < clearance) p_[i] += (clearance - d) * normal;
+    if (d < clearance) {
+      p_[i] += (clearance - d) * normal;
+      return;
+    }
+    // Not moved: p_[i] becomes x_[i] as it is, so the next step's lookup
+    // there would return exactly this.
+    lookup_valid_[i] = 1;
+    lookup_distance_[i] = d;
+    lookup_normal_[i] = normal;
   });
   projections_ += p_.size();
 }
@@ -219,7 +230,14 @@ void ClothSimulation::step(int global_axis) {
   const double local = params_.local_acceleration * scale_;
   parallel_for(static_cast<int>(x_.size()), params_.threads, [&](int i) {
     Vec3 normal;
-    const double distance = wearer_.value_and_gradient(x_[i], normal);
+    double distance;
+    if (lookup_valid_[i] != 0) {
+      distance = lookup_distance_[i];
+      normal = lookup_normal_[i];
+      lookup_valid_[i] = 0;
+    } else {
+      distance = wearer_.value_and_gradient(x_[i], normal);
+    }
     // The field near x, linearised: the contact plane of this step. A vertex
     // moves at most max_move per step, so the plane stays accurate, and the
     // iterations below need no further field lookups.
@@ -275,6 +293,19 @@ double ClothSimulation::min_distance() const {
   return best;
 }
 
+bool ClothSimulation::all_farther_than(double distance) const {
+  // The vertex that was nearest at the last check is looked at first: while
+  // the garment is on, one lookup usually settles it.
+  if (!x_.empty() && wearer_.value(x_[nearest_hint_]) < distance) return false;
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    if (wearer_.value(x_[i]) < distance) {
+      nearest_hint_ = i;
+      return false;
+    }
+  }
+  return true;
+}
+
 StripResult ClothSimulation::run(
     std::uint64_t seed, const std::function<bool(int step, const ClothSimulation&)>& observer) {
   const int switch_steps = std::max(params_.switch_steps, 1);
@@ -286,7 +317,7 @@ StripResult ClothSimulation::run(
     step(axes[s / switch_steps]);
     result.steps = s + 1;
     if (observer && !observer(s + 1, *this)) break;
-    if ((s + 1) % check_every == 0 && min_distance() >= goal) {
+    if ((s + 1) % check_every == 0 && all_farther_than(goal)) {
       result.success = true;
       break;
     }

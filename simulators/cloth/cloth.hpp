@@ -128,6 +128,10 @@ class ClothSimulation {
 
   // Least distance of any vertex to the wearer (mesh units).
   double min_distance() const;
+  // Whether every vertex is at least `distance` (mesh units) from the
+  // wearer: min_distance() >= distance, but it stops at the first vertex
+  // that is nearer, which is the first one looked at while the garment is on.
+  bool all_farther_than(double distance) const;
   const std::vector<Vec3>& positions() const { return x_; }
   const std::vector<Spring>& springs() const { return springs_; }
   const ClothMesh& mesh() const { return mesh_; }
@@ -146,7 +150,14 @@ class ClothSimulation {
   std::vector<Vec3> x_, v_, p_;
   std::vector<Vec3> contact_normal_;    // per vertex, this step's contact plane:
   std::vector<double> contact_offset_;  // distance(p) ≈ offset + normal·p
+  // The field at x_[i], when the last exact vertex collision looked it up
+  // there and did not move the vertex: the next step starts from it instead
+  // of a second, identical lookup.
+  std::vector<char> lookup_valid_;
+  std::vector<double> lookup_distance_;
+  std::vector<Vec3> lookup_normal_;
   std::uint64_t projections_ = 0;
+  mutable std::size_t nearest_hint_ = 0;  // all_farther_than's first vertex to look at
   double plane_distance(int i) const { return contact_offset_[i] + contact_normal_[i].dot(p_[i]); }
   void collide_vertices();
   void collide_edges();

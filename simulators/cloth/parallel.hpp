@@ -14,7 +14,14 @@ inline int resolve_threads(int threads) {
 template <class Function>
 void parallel_for(int n, int threads, Function&& function) {
   const int count = resolve_threads(threads);
-#pragma omp parallel for schedule(static) num_threads(count) if (count > 1 && n > 64)
+  if (count <= 1 || n <= 64) {
+    // A plain loop: even an inactive OpenMP region costs a runtime call per
+    // loop, and a cloth step runs over a hundred loops (one per colour class
+    // and iteration). The wearability test runs its trials single-threaded.
+    for (int i = 0; i < n; ++i) function(i);
+    return;
+  }
+#pragma omp parallel for schedule(static) num_threads(count)
   for (int i = 0; i < n; ++i) function(i);
 }
 

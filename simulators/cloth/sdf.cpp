@@ -226,6 +226,7 @@ SignedDistanceField::SignedDistanceField(const std::vector<Vec3>& vertices,
   nx_ = static_cast<int>(std::ceil(size.x() / cell_)) + 1;
   ny_ = static_cast<int>(std::ceil(size.y() / cell_)) + 1;
   nz_ = static_cast<int>(std::ceil(size.z() / cell_)) + 1;
+  high_ = origin_ + cell_ * Vec3(nx_ - 1, ny_ - 1, nz_ - 1);
   values_.assign(static_cast<std::size_t>(nx_) * ny_ * nz_, 0.0f);
   const TriangleMeshQuery& mesh = *mesh_;
   parallel_for(nz_, params.threads, [&](int k) {
@@ -240,7 +241,7 @@ SignedDistanceField::SignedDistanceField(const std::vector<Vec3>& vertices,
 }
 
 Vec3 SignedDistanceField::box_max() const {
-  return origin_ + cell_ * Vec3(nx_ - 1, ny_ - 1, nz_ - 1);
+  return high_;
 }
 
 double SignedDistanceField::inside_value_and_gradient(const Vec3& p, Vec3* gradient) const {
@@ -278,9 +279,11 @@ double SignedDistanceField::value_and_gradient(const Vec3& p, Vec3& gradient) co
 }
 
 double SignedDistanceField::evaluate(const Vec3& p, Vec3* want) const {
-  const Vec3 high = box_max();
+  const Vec3& high = high_;
   const Vec3 clamped = p.cwiseMax(origin_).cwiseMin(high);
   const Vec3 outside = p - clamped;
+  // Almost every query is inside the grid: no square root for those.
+  if (outside.squaredNorm() == 0) return inside_value_and_gradient(p, want);
   const double gap = outside.norm();
   if (gap == 0) return inside_value_and_gradient(p, want);
   // Beyond the grid: the box is far from the surface (margin), so the field

@@ -93,6 +93,7 @@ class SignedDistanceField {
  private:
   std::shared_ptr<const TriangleMeshQuery> mesh_;
   Vec3 origin_;
+  Vec3 high_;  // the last grid node (box_max), cached: every query clamps to it
   double cell_ = 1.0;
   int nx_ = 0, ny_ = 0, nz_ = 0;
   double scale_ = 1.0;

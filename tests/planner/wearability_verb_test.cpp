@@ -1,11 +1,15 @@
 // `wearknit wearability` end to end on cut folders written here.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "planner/cut.hpp"
+#include "planner/cut_io.hpp"
 #include "planner/wearability_io.hpp"
+#include "planner/wearability_recut.hpp"
 #include "tests/planner/cover_shapes.hpp"
 #include "tests/test_support.hpp"
 
@@ -78,13 +82,143 @@ TEST(WearabilityVerbTest, ClosedShellIsRejectedAndEveryArcLaced) {
       run_wearknit("wearability " + dir.string() + " --wearer " + (dir / "ball.obj").string() +
                    " --trials 2 --max-steps 600 --resolution 24");
   EXPECT_EQ(result.exit_code, 1);
-  EXPECT_NE(result.err.find("error: [W020] the garment with every cut open did not come off the "
-                            "wearer in 2 trials of 600 steps"),
-            std::string::npos)
-      << result.err;
+  // The folder has no proxy.obj to cut again (§5's re-cut needs one).
+  EXPECT_EQ(result.err, (dir / "cuts.json").string() +
+                            ": error: [W020] the garment with every cut open did not come off the "
+                            "wearer in 2 trials of 600 steps, with the cut of an unrecorded seed "
+                            "(the folder's); cannot cut again: " +
+                            dir.string() +
+                            " has no proxy.obj and report.json (not a folder written by wearknit "
+                            "cut); every arc is labelled lace\n");
   const auto cuts = nlohmann::json::parse(read_file(dir / "cuts.json"));
   EXPECT_EQ(cuts["arcs"][0]["label"], "lace");
   EXPECT_EQ(cuts["wearability"]["wearable"], false);
+  fs::remove_all(dir);
+}
+
+// A torus cover cut by `wearknit cut`, then given a first cut that cannot
+// work: its cuts.json lists no arc, so the garment is a closed shell around
+// the torus. Returns the cut folder; the wearer is DIR/../torus.obj.
+fs::path write_closed_torus_cut(const std::string& name) {
+  const fs::path dir = make_temp_dir(name);
+  const CoverMesh garment = torus_mesh(1.0, 0.4, 24, 12);
+  write_file(dir / "garment.obj", obj_text(garment.vertices, garment.faces));
+  const CoverMesh ring = torus_mesh(1.0, 0.4, 48, 24);
+  write_file(dir / "torus.obj", obj_text(ring.vertices, ring.faces));
+  const auto cut = run_wearknit("cut " + (dir / "garment.obj").string() + " -o " +
+                                (dir / "cut").string() + " --seed 1 --picture-px 60 --quiet");
+  EXPECT_EQ(cut.exit_code, 0) << cut.err;
+  auto cuts = nlohmann::json::parse(read_file(dir / "cut" / "cuts.json"));
+  EXPECT_GE(cuts["arcs"].size(), 2u) << "a torus needs two loops cut";
+  cuts["arcs"] = nlohmann::json::array();
+  write_file(dir / "cut" / "cuts.json", cuts.dump(1));
+  return dir;
+}
+
+// The larger side of a PNG image.
+int png_extent(const fs::path& path) {
+  const std::string png = read_file(path);
+  if (png.size() < 24 || png.substr(1, 3) != "PNG") return 0;
+  int width = 0, height = 0;
+  for (int i = 16; i < 20; ++i) width = width * 256 + static_cast<unsigned char>(png[i]);
+  for (int i = 20; i < 24; ++i) height = height * 256 + static_cast<unsigned char>(png[i]);
+  return std::max(width, height);
+}
+
+TEST(WearabilityVerbTest, UnwearableCutIsCutAgainWithAnotherSeed) {
+  const fs::path dir = write_closed_torus_cut("wearability-recut");
+  const fs::path cut = dir / "cut";
+  const std::uint64_t recut_seed = planner::recut_seed(3, 1);
+  // A short budget keeps the elimination of the new cut's many arcs quick;
+  // the new cut, a disc, comes off within it (seed 3: 280 steps).
+  const auto result =
+      run_wearknit("wearability " + cut.string() + " --wearer " + (dir / "torus.obj").string() +
+                   " --trials 1 --max-steps 400 --seed 3 --resolution 32");
+  ASSERT_EQ(result.exit_code, 0) << result.err << result.out;
+  EXPECT_NE(result.out.find("the cut with seed 1 does not come off the wearer with every cut open; "
+                            "cutting again with seed " +
+                            std::to_string(recut_seed) + "\n"),
+            std::string::npos)
+      << result.out;
+  EXPECT_NE(
+      result.out.find("; re-cut with seed " + std::to_string(recut_seed) + " (attempt 1 of 3)"),
+      std::string::npos)
+      << result.out;
+
+  // cuts.json: the new cut's arcs, labelled, and both attempts.
+  const auto cuts = nlohmann::json::parse(read_file(cut / "cuts.json"));
+  ASSERT_GE(cuts["arcs"].size(), 2u);
+  for (const auto& arc : cuts["arcs"]) EXPECT_TRUE(arc["label"] == "sew" || arc["label"] == "lace");
+  const auto& summary = cuts["wearability"];
+  EXPECT_EQ(summary["wearable"], true);
+  EXPECT_EQ(summary["recut"], true);
+  EXPECT_EQ(summary["cut_seed"], recut_seed);
+  ASSERT_EQ(summary["cut_attempts"].size(), 2u);
+  EXPECT_EQ(summary["cut_attempts"][0]["cut_seed"], 1);
+  EXPECT_EQ(summary["cut_attempts"][0]["arcs"], 0);
+  EXPECT_EQ(summary["cut_attempts"][0]["wearable"], false);
+  ASSERT_EQ(summary["cut_attempts"][0]["initial_trials"].size(), 1u);
+  EXPECT_EQ(summary["cut_attempts"][0]["initial_trials"][0]["steps"], 400);
+  EXPECT_EQ(summary["cut_attempts"][1]["cut_seed"], recut_seed);
+  EXPECT_EQ(summary["cut_attempts"][1]["wearable"], true);
+
+  // report.json: the new seed, the input kept, every attempt.
+  const auto report = nlohmann::json::parse(read_file(cut / "report.json"));
+  EXPECT_EQ(report["params"]["seed"], recut_seed);
+  EXPECT_EQ(report["input"]["file"], (dir / "garment.obj").string());
+  EXPECT_EQ(report["wearability"]["recut"], true);
+  EXPECT_EQ(report["wearability"]["cut_attempts"], summary["cut_attempts"]);
+
+  // The rewritten folder is a consistent cut folder, pictures redrawn at their size.
+  knitout::DiagnosticSink sink;
+  const auto reread = planner::read_cut_result(cut.string(), sink);
+  ASSERT_TRUE(reread.has_value()) << (sink.diagnostics().empty() ? ""
+                                                                 : sink.diagnostics()[0].message);
+  EXPECT_EQ(planner::verify_cut(*reread), std::vector<std::string>{});
+  EXPECT_EQ(reread->arcs.size(), cuts["arcs"].size());
+  EXPECT_EQ(png_extent(cut / "cuts-3d.png"), 120);
+  EXPECT_NEAR(png_extent(cut / "layout-2d.png"), 100, 1);
+  fs::remove_all(dir);
+}
+
+TEST(WearabilityVerbTest, NoWearableCutWithinTheLimitIsW020NamingEveryAttempt) {
+  // Ten steps cannot take any cover off (the garment moves at most half a
+  // clearance per step), so every cut fails.
+  const fs::path dir = write_closed_torus_cut("wearability-recut-fails");
+  const fs::path cut = dir / "cut";
+  const std::string base = "wearability " + cut.string() + " --wearer " +
+                           (dir / "torus.obj").string() +
+                           " --trials 1 --max-steps 10 --seed 3 --resolution 24";
+  auto result = run_wearknit(base + " --recut-limit 0");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, (cut / "cuts.json").string() +
+                            ": error: [W020] the garment with every cut open did not come off the "
+                            "wearer in 1 trials of 10 steps, with the cut of seed 1 (the folder's) "
+                            "(--recut-limit 0); every arc is labelled lace\n");
+  auto report = nlohmann::json::parse(read_file(cut / "report.json"));
+  EXPECT_EQ(report["params"]["seed"], 1) << "not cut again";
+  EXPECT_EQ(report["wearability"]["cut_attempts"].size(), 1u);
+
+  result = run_wearknit(base + " --recut-limit 2");
+  EXPECT_EQ(result.exit_code, 1);
+  const std::uint64_t first = planner::recut_seed(3, 1), second = planner::recut_seed(3, 2);
+  EXPECT_EQ(result.err, (cut / "cuts.json").string() +
+                            ": error: [W020] the garment with every cut open did not come off the "
+                            "wearer in 1 trials of 10 steps, with each of the cuts of seed 1 (the "
+                            "folder's), seed " +
+                            std::to_string(first) + " (re-cut 1), seed " + std::to_string(second) +
+                            " (re-cut 2); every arc is labelled lace\n");
+  EXPECT_NE(first, second);
+  report = nlohmann::json::parse(read_file(cut / "report.json"));
+  EXPECT_EQ(report["params"]["seed"], second) << "the folder holds the last cut tried";
+  ASSERT_EQ(report["wearability"]["cut_attempts"].size(), 3u);
+  for (const auto& attempt : report["wearability"]["cut_attempts"]) {
+    EXPECT_EQ(attempt["wearable"], false);
+  }
+  const auto cuts = nlohmann::json::parse(read_file(cut / "cuts.json"));
+  EXPECT_EQ(cuts["wearability"]["wearable"], false);
+  EXPECT_EQ(cuts["wearability"]["recut"], true);
+  for (const auto& arc : cuts["arcs"]) EXPECT_EQ(arc["label"], "lace");
   fs::remove_all(dir);
 }
 
