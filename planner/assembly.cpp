@@ -194,9 +194,10 @@ void load(Model& m, const fs::path& dir) {
     }
   }
 
-  // The schedule, rebuilt from the seed and number of trials the scheduler
-  // recorded (its result depends on nothing else, docs/scheduling.md §7.3),
-  // and checked against what it wrote.
+  // The pieces laid flat: as the scheduler wrote them
+  // (pieces/piece-N.layout.json), else from the schedule rebuilt from the
+  // seed and number of trials it recorded (its result depends on nothing
+  // else, docs/scheduling.md §7.3) and checked against what it wrote.
   if (!report.contains("schedule") || !report["schedule"].is_object())
     fail(report_path, "A004", "no \"schedule\" member: run wearknit schedule first");
   const json& sched = report["schedule"];
@@ -209,27 +210,56 @@ void load(Model& m, const fs::path& dir) {
     fail(report_path, "A002", std::string("unexpected \"schedule\" content: ") + e.what());
   }
   if (params.trials < 1) fail(report_path, "A002", "\"schedule\".\"trials\" is less than 1");
+  const std::size_t pieces = sched["pieces"].size();
+  bool from_files = pieces > 0;
+  for (std::size_t p = 1; p <= pieces && from_files; ++p)
+    from_files = fs::exists(dir / "pieces" / ("piece-" + std::to_string(p) + ".layout.json"));
   try {
-    m.schedule = schedule(m.mesh, params);
+    if (from_files) {
+      build_rows(m.mesh, m.schedule);  // the wale seams (§7.1); nothing random
+      for (std::size_t p = 1; p <= pieces; ++p) {
+        const fs::path path = dir / "pieces" / ("piece-" + std::to_string(p) + ".layout.json");
+        std::string error;
+        auto layout = read_piece_layout(path.string(), &error);
+        if (!layout) throw Failure(error.insert(error.find(": ") + 2, "error: [A002] "));
+        m.layouts.push_back(std::move(*layout));
+      }
+    } else {
+      m.schedule = schedule(m.mesh, params);
+      if (m.schedule.pieces.size() != pieces)
+        fail(report_path, "A004",
+             "lists " + std::to_string(pieces) + " pieces but the schedule rebuilt from " +
+                 smobj_path.filename().string() + " (seed " + std::to_string(params.seed) + ", " +
+                 std::to_string(params.trials) + " trials) has " +
+                 std::to_string(m.schedule.pieces.size()) +
+                 ": the folder's files do not belong together (run wearknit schedule again)");
+      m.layouts = piece_layouts(m.schedule);
+    }
   } catch (const ScheduleError& e) {
     fail(smobj_path, "A003", std::string("cannot be scheduled: ") + e.what());
   }
-  const std::size_t pieces = sched["pieces"].size();
-  if (m.schedule.pieces.size() != pieces)
-    fail(report_path, "A004",
-         "lists " + std::to_string(pieces) + " pieces but the schedule rebuilt from " +
-             smobj_path.filename().string() + " (seed " + std::to_string(params.seed) + ", " +
-             std::to_string(params.trials) + " trials) has " +
-             std::to_string(m.schedule.pieces.size()) +
-             ": the folder's files do not belong together (run wearknit schedule again)");
-  m.layouts = piece_layouts(m.schedule);
   m.piece_of_face.assign(m.mesh.faces.size(), kNone);
   m.layout_index.assign(m.mesh.faces.size(), kNone);
   for (std::size_t p = 0; p < m.layouts.size(); ++p) {
     for (std::size_t i = 0; i < m.layouts[p].faces.size(); ++i) {
-      m.piece_of_face[at(m.layouts[p].faces[i].face)] = static_cast<int>(p);
-      m.layout_index[at(m.layouts[p].faces[i].face)] = static_cast<int>(i);
+      const int face = m.layouts[p].faces[i].face;
+      if (at(face) >= m.mesh.faces.size() || m.piece_of_face[at(face)] != kNone)
+        fail(dir / "pieces" / ("piece-" + std::to_string(p + 1) + ".layout.json"), "A004",
+             "face " + std::to_string(face) +
+                 (at(face) >= m.mesh.faces.size() ? " is not a face of " : " is twice in ") +
+                 (at(face) >= m.mesh.faces.size() ? smobj_path.filename().string()
+                                                  : std::string("the pieces")) +
+                 ": the folder's files do not belong together (run wearknit schedule again)");
+      m.piece_of_face[at(face)] = static_cast<int>(p);
+      m.layout_index[at(face)] = static_cast<int>(i);
     }
+  }
+  for (std::size_t f = 0; f < m.mesh.faces.size(); ++f) {
+    if (m.piece_of_face[f] == kNone)
+      fail(dir / "pieces", "A004",
+           "stitch-mesh face " + std::to_string(f) +
+               " is in no piece: the folder's files do not belong together (run wearknit "
+               "schedule again)");
   }
 
   // cuts.json: arcs (ids, labels) and the scheduler's cuts.
@@ -335,7 +365,7 @@ void load(Model& m, const fs::path& dir) {
       fail(cuts_path, "A002", std::string("unexpected \"schedule_cuts\" content: ") + e.what());
     }
   }
-  if (listed != rebuilt)
+  if (!from_files && listed != rebuilt)
     fail(cuts_path, "A004",
          "\"schedule_cuts\" lists " + std::to_string(listed.size()) +
              " cut course edges but the schedule rebuilt from report.json cuts " +
@@ -1045,10 +1075,27 @@ void draw_pages(Canvas& c, const Model& m, const std::vector<std::string>& lines
             seam_segments[{seam->second, which}].push_back(s);
           }
         }
-        // The point of a short-row triangle has no side: close the outline.
+        // The point of a short-row triangle has no side; in the layout it
+        // is a gap between the triangle's bottom and top. Close it in the
+        // style of the seam on either side of it, so the seam reads as one line.
         const auto corners = face_corners(f);
-        if (roles.left_wale == kNone) edges.push_back({to_page(corners[3]), to_page(corners[0])});
-        if (roles.right_wale == kNone) edges.push_back({to_page(corners[1]), to_page(corners[2])});
+        auto close = [&](P2 a, P2 b, int in_side, int out_side) {
+          for (int side : {in_side, out_side}) {
+            const auto seam = m.seam_of_side.find({f.face, side});
+            if (seam == m.seam_of_side.end()) continue;
+            const Seam& sm = m.seams[at(seam->second)];
+            const SideRef ref{f.face, side};
+            const int which =
+                std::find(sm.sides[0].begin(), sm.sides[0].end(), ref) != sm.sides[0].end() ? 0 : 1;
+            seam_segments[{seam->second, which}].push_back({a, b});
+            return;
+          }
+          edges.push_back({a, b});
+        };
+        if (roles.left_wale == kNone && !roles.in.empty() && !roles.out.empty())
+          close(to_page(corners[3]), to_page(corners[0]), roles.in.front(), roles.out.front());
+        if (roles.right_wale == kNone && !roles.in.empty() && !roles.out.empty())
+          close(to_page(corners[1]), to_page(corners[2]), roles.in.back(), roles.out.back());
       }
       for (const auto& e : edges) c.polyline({e[0], e[1]}, kEdgeColour, 0.6, false, "edge");
       std::vector<std::pair<P2, const Seam*>> labels;

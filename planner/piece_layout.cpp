@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <climits>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+
+#include "knitout/output_file.hpp"
 
 namespace planner {
 
@@ -79,6 +84,63 @@ std::vector<PieceLayout> piece_layouts(const Schedule& s) {
     layout.needles = hi - lo + 1;
   }
   return layouts;
+}
+
+std::string write_piece_layouts(const std::string& pieces_dir, const Schedule& schedule) {
+  const std::vector<PieceLayout> layouts = piece_layouts(schedule);
+  for (std::size_t p = 0; p < layouts.size(); ++p) {
+    nlohmann::json faces = nlohmann::json::array();
+    for (const FaceLayout& f : layouts[p].faces)
+      faces.push_back({f.face, f.level, f.in_needles, f.in_levels, f.out_needles});
+    const nlohmann::json doc = {{"format", "wearknit-piece-layout 1"},
+                                {"piece", p + 1},
+                                {"needles", layouts[p].needles},
+                                {"rows", layouts[p].levels},
+                                {"faces", faces}};
+    const std::string path =
+        (std::filesystem::path(pieces_dir) / ("piece-" + std::to_string(p + 1) + ".layout.json"))
+            .string();
+    const std::string failure =
+        knitout::write_file_atomically(path, [&](std::ostream& out) { out << doc.dump() << '\n'; });
+    if (!failure.empty()) return failure;
+  }
+  return "";
+}
+
+std::optional<PieceLayout> read_piece_layout(const std::string& path, std::string* error) {
+  std::ifstream in(path);
+  if (!in) {
+    *error = path + ": cannot open file";
+    return std::nullopt;
+  }
+  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object() ||
+      doc.value("format", std::string()) != "wearknit-piece-layout 1") {
+    *error = path + ": not a piece layout (wearknit-piece-layout 1)";
+    return std::nullopt;
+  }
+  PieceLayout layout;
+  try {
+    layout.needles = doc.at("needles").get<int>();
+    layout.levels = doc.at("rows").get<int>();
+    for (const nlohmann::json& f : doc.at("faces")) {
+      FaceLayout face;
+      face.face = f.at(0).get<int>();
+      face.level = f.at(1).get<int>();
+      face.in_needles = f.at(2).get<std::vector<int>>();
+      face.in_levels = f.at(3).get<std::vector<int>>();
+      face.out_needles = f.at(4).get<std::vector<int>>();
+      if (face.face < 0 || face.in_needles.empty() || face.out_needles.empty() ||
+          face.in_levels.size() != face.in_needles.size())
+        throw std::runtime_error("face entry " + f.dump() +
+                                 " is not [face, level, [needles], [levels], [needles]]");
+      layout.faces.push_back(std::move(face));
+    }
+  } catch (const std::exception& e) {
+    *error = path + ": unexpected content: " + e.what();
+    return std::nullopt;
+  }
+  return layout;
 }
 
 FaceSideRoles face_side_roles(const StitchFace& face) {

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <array>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "planner/schedule.hpp"
@@ -35,6 +37,18 @@ struct PieceLayout {
 // One layout per schedule.pieces entry (same order). Needs a schedule that
 // went through every stage of planner::schedule.
 std::vector<PieceLayout> piece_layouts(const Schedule& schedule);
+
+// pieces_dir/piece-N.layout.json for every piece (N from 1, as the knitout
+// files), written atomically: {"format": "wearknit-piece-layout 1",
+// "piece": N, "needles": W, "rows": H, "faces": [[face, level, [in needles],
+// [in levels], [out needles]], ...]} with the fields of FaceLayout. The
+// scheduler writes them so the assembly guide draws the pieces it knit.
+// Returns "" or the failure.
+std::string write_piece_layouts(const std::string& pieces_dir, const Schedule& schedule);
+
+// Reads one such file; nullopt with `error` set (naming the file) when it is
+// missing or malformed.
+std::optional<PieceLayout> read_piece_layout(const std::string& path, std::string* error);
 
 // A face's sides by role, as the scheduler reads them (§7.1): course-in
 // sides left to right, course-out sides left to right, and the right and

@@ -216,6 +216,17 @@ TEST(AssemblyTest, GuideOfARealPlanFolderShowsEveryPieceAndSeam) {
   EXPECT_EQ(count(svg, "class=\"legend-sew\""), 1);
   EXPECT_EQ(count(svg, "class=\"legend-lace\""), 1);
 
+  // The scheduler wrote each piece's layout; without those files the guide
+  // rebuilds the schedule from report.json's seed and trials: same pages.
+  for (std::size_t p = 1; p <= pieces; ++p) {
+    const fs::path layout = dir / "pieces" / ("piece-" + std::to_string(p) + ".layout.json");
+    ASSERT_TRUE(fs::exists(layout)) << layout;
+    fs::remove(layout);
+  }
+  const auto rebuilt = run_wearknit("assembly '" + dir.string() + "' -q");
+  ASSERT_EQ(rebuilt.exit_code, 0) << rebuilt.err;
+  EXPECT_EQ(read_file(dir / "assembly.svg"), svg);
+
   // The library call gives the same figures, without a wearer.
   planner::AssemblySummary summary;
   EXPECT_EQ(planner::write_assembly_guide(dir, "", &summary), "");
@@ -302,8 +313,19 @@ TEST(AssemblyTest, MissingOrCorruptFilesGiveAClearErrorAndWriteNothing) {
       << r.err;
   EXPECT_TRUE(guide_files(dir).empty());
 
-  // Put back, it works again.
+  // A piece layout written by the scheduler that cannot be read.
   write_file(dir / "report.json", report);
+  const fs::path layout = dir / "pieces" / "piece-1.layout.json";
+  const std::string layout_text = read_file(layout);
+  write_file(layout, "[1, 2");
+  r = run_wearknit("assembly " + d);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err,
+            layout.string() + ": error: [A002] not a piece layout (wearknit-piece-layout 1)\n");
+  EXPECT_TRUE(guide_files(dir).empty());
+
+  // Put back, it works again.
+  write_file(layout, layout_text);
   r = run_wearknit("assembly " + d + " -q");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(guide_files(dir).size(), 3u);
