@@ -22,7 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-constexpr double kScale = 40;  // 3torus-quad is 3 units across: a 120 mm cover
+constexpr double kScale = 25;  // 3torus-quad is 3 units across: a 75 mm cover
 
 // A copy of `mesh` scaled like `wearknit cut --scale` scales the garment, so
 // the garment can be worn over itself.
