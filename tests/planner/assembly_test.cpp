@@ -330,6 +330,20 @@ TEST(AssemblyTest, MissingOrCorruptFilesGiveAClearErrorAndWriteNothing) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(guide_files(dir).size(), 3u);
 
+  // A page as a picture, and its usage errors.
+  const fs::path page = dir / "page-1.png";
+  r = run_wearknit("assembly " + d + " -q --page-png '1:" + page.string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file(page).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  r = run_wearknit("assembly " + d + " -q --page-png 0:x.png");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "wearknit assembly: --page-png takes N:OUT.png with a page number N >= 1\n");
+  r = run_wearknit("assembly " + d + " -q --page-png '99:" + page.string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(page.string() + ": error: [A006] the guide has pages 1 to "),
+            std::string::npos)
+      << r.err;
+
   r = run_wearknit("assembly '" + (dir / "nowhere").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, (dir / "nowhere").string() + ": error: [A001] not a folder\n");
