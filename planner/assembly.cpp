@@ -985,6 +985,14 @@ void draw_legend(Canvas& c, P2 at) {
          9, kText, Anchor::Start, false, "legend");
 }
 
+// A seam number on a page: its circle, and the point of the seam it names.
+struct Label {
+  P2 centre;
+  P2 anchor;
+  double radius = 0;
+  const Seam* seam = nullptr;
+};
+
 void draw_pages(Canvas& c, const Model& m, const std::vector<std::string>& lines,
                 const std::vector<Placement>& places, int table_pages, int piece_pages,
                 const std::string& title) {
@@ -1030,6 +1038,7 @@ void draw_pages(Canvas& c, const Model& m, const std::vector<std::string>& lines
   // Piece pages.
   for (int page = 0; page < piece_pages; ++page) {
     c.next_page();
+    std::vector<Label> placed;  // seam numbers on this page
     c.text({kMargin, kMargin + 10},
            "Pieces (page " + std::to_string(page + 1) + " of " + std::to_string(piece_pages) + ")",
            11, kText, Anchor::Start, true, "page-title");
@@ -1098,28 +1107,69 @@ void draw_pages(Canvas& c, const Model& m, const std::vector<std::string>& lines
           close(to_page(corners[1]), to_page(corners[2]), roles.in.back(), roles.out.back());
       }
       for (const auto& e : edges) c.polyline({e[0], e[1]}, kEdgeColour, 0.6, false, "edge");
-      std::vector<std::pair<P2, const Seam*>> labels;
+      std::vector<Label> labels;
       for (const auto& [key, segs] : seam_segments) {
         const Seam& sm = m.seams[at(key.first)];
         const Rgb colour = sm.lace ? kLaceColour : kSewColour;
         for (const auto& line : chain(segs))
           c.polyline(line, colour, 2.0, sm.lace, sm.lace ? "seam-lace" : "seam-sew");
-        // The number sits on the middle side of the stretch.
+        // The number sits on the middle side of the stretch, or, where
+        // another number is already there, on a side near it or moved off
+        // the line (with a leader) until it is clear.
         if (sm.piece[at(key.second)] != pl.piece) continue;
+        std::vector<SideRef> here;
+        for (const SideRef& side : sm.sides[at(key.second)]) {
+          if (m.piece_of_face[at(side.face)] == pl.piece) here.push_back(side);
+        }
         const SideRef mid = sm.label_at[at(key.second)];
-        const FaceLayout& f = m.layouts[at(pl.piece)].faces[at(m.layout_index[at(mid.face)])];
-        const auto seg = side_in_layout(m.mesh.faces[at(mid.face)], f, mid.side);
-        const P2 a = to_page(seg[0]);
-        const P2 b = to_page(seg[1]);
-        labels.push_back({{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, &sm});
-      }
-      for (const auto& [p, sm] : labels) {
-        const Rgb colour = sm->lace ? kLaceColour : kSewColour;
-        const std::string number = std::to_string(sm->number);
+        const auto middle = std::find(here.begin(), here.end(), mid);
+        const std::ptrdiff_t centre = middle == here.end() ? 0 : middle - here.begin();
+        std::vector<std::pair<std::ptrdiff_t, SideRef>> by_distance;
+        for (std::size_t k = 0; k < here.size(); ++k)
+          by_distance.push_back({std::abs(static_cast<std::ptrdiff_t>(k) - centre), here[k]});
+        std::stable_sort(by_distance.begin(), by_distance.end(),
+                         [](const auto& x, const auto& y) { return x.first < y.first; });
+        for (std::size_t k = 0; k < here.size(); ++k) here[k] = by_distance[k].second;
+        const std::string number = std::to_string(sm.number);
         const double r = number.size() > 2 ? 8.5 : 6.5;
-        c.circle(p, r, kWhite, colour, 1.2);
-        c.text({p.x, p.y + 2.6}, number, 7, colour, Anchor::Middle, true,
-               sm->lace ? "seam-label lace" : "seam-label sew");
+        Label best;
+        bool found = false;
+        const std::size_t anchors = std::min<std::size_t>(here.size(), 8);
+        for (int push = 0; push < 4 && !found; ++push) {
+          for (std::size_t k = 0; k < anchors && !found; ++k) {
+            const SideRef side = here[k];
+            const FaceLayout& f = m.layouts[at(pl.piece)].faces[at(m.layout_index[at(side.face)])];
+            const auto seg = side_in_layout(m.mesh.faces[at(side.face)], f, side.side);
+            const P2 a = to_page(seg[0]);
+            const P2 b = to_page(seg[1]);
+            const P2 on{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+            const double len = std::max(std::hypot(b.x - a.x, b.y - a.y), 1e-9);
+            const P2 normal{-(b.y - a.y) / len, (b.x - a.x) / len};
+            for (int sign : {1, -1}) {
+              const double d = push * 2.2 * r * sign;
+              const P2 at_p{on.x + normal.x * d, on.y + normal.y * d};
+              const bool clear = std::all_of(placed.begin(), placed.end(), [&](const Label& o) {
+                return std::hypot(o.centre.x - at_p.x, o.centre.y - at_p.y) >= o.radius + r + 0.5;
+              });
+              if (!found && (clear || (push == 0 && k == 0 && sign == 1))) {
+                best = {at_p, on, r, &sm};
+                found = clear;
+              }
+              if (push == 0) break;
+            }
+          }
+        }
+        placed.push_back(best);
+        labels.push_back(best);
+      }
+      for (const Label& l : labels) {
+        const Seam& sm = *l.seam;
+        const Rgb colour = sm.lace ? kLaceColour : kSewColour;
+        if (std::hypot(l.centre.x - l.anchor.x, l.centre.y - l.anchor.y) > 0.5)
+          c.polyline({l.anchor, l.centre}, colour, 0.6, false, "leader");
+        c.circle(l.centre, l.radius, kWhite, colour, 1.2);
+        c.text({l.centre.x, l.centre.y + 2.6}, std::to_string(sm.number), 7, colour, Anchor::Middle,
+               true, sm.lace ? "seam-label lace" : "seam-label sew");
       }
     }
   }
@@ -1326,6 +1376,9 @@ std::string write_assembly_guide(const fs::path& plan_dir, const std::string& we
     prepare(g, plan_dir, wearer_path);
   } catch (const Failure& e) {
     return e.what();
+  } catch (const std::logic_error& e) {
+    // A broken invariant of the guide's own code: said loudly, never a crash of the caller.
+    return plan_dir.string() + ": internal error: " + e.what();
   }
   const Model& m = g.model;
   const int pages = g.table_pages + g.piece_pages;
