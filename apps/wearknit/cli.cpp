@@ -46,6 +46,9 @@ const std::vector<Verb>& verbs() {
       {"stitch-mesh",
        "stitch-mesh DIR [--gauge N] [--swatch SxR:WxH_MM | --stitch-mm CxW] [--no-picture]",
        "remesh a cut folder into a stitch mesh of course x wale faces (paper §6)", run_stitch_mesh},
+      {"assembly", "assembly DIR [--wearer WEARER.obj] [--page-png N:OUT.png]",
+       "the assembly guide of a plan folder: pieces laid flat, seams numbered, sew and lace",
+       run_assembly},
   };
   return kVerbs;
 }

@@ -17,6 +17,7 @@
 #include "knitout/output_file.hpp"
 #include "knitout/parser.hpp"
 #include "planner/knitout_emit.hpp"
+#include "planner/piece_layout.hpp"
 #include "planner/schedule.hpp"
 #include "planner/smobj_read.hpp"
 #include "simulators/bed/bed_view.hpp"
@@ -242,6 +243,14 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
                           {"vm_warnings", judged[p].warnings},
                           {"estimated_knit_time_s", judged[p].stats.estimated_time_s},
                           {"planner_time_model_s", st.knit_time_s}});
+  }
+
+  // Each piece laid flat, for the assembly guide (planner/piece_layout.hpp).
+  if (const std::string failure =
+          planner::write_piece_layouts((folder / "pieces").string(), schedule);
+      !failure.empty()) {
+    context.err << "wearknit schedule: " << failure << '\n';
+    return kExitUsage;
   }
 
   // Cuts from scheduling: seams labelled sew (§7.3).
