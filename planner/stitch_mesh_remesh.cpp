@@ -376,6 +376,8 @@ struct Builder {
   AnisoRemeshStats stats;
   // Bottom sides (as the row above walks them) of increases and decreases.
   std::unordered_set<std::uint64_t> shaped_below;
+  // Course-out sides (as the row above walks them) -> the face below.
+  std::unordered_map<std::uint64_t, std::size_t> face_below;
 
   int stitch_vertex(int piece_vertex) {
     auto [it, inserted] = anchor.emplace(piece_vertex, 0);
@@ -539,6 +541,12 @@ struct Builder {
     const std::optional<FaceType> type = classify_roles(face.roles);
     if (!type) ++stats.invalid_faces;
     face.type = type.value_or(FaceType::Knit);
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      if (face.roles[i] == EdgeRole::CourseOut) {
+        face_below[key(static_cast<int>(face.vertices[(i + 1) % face.vertices.size()]),
+                       static_cast<int>(face.vertices[i]))] = mesh.faces.size();
+      }
+    }
     if (face.type == FaceType::Increase || face.type == FaceType::Decrease) {
       // Remember the pentagon's top sides, as the row above walks them.
       const std::size_t n = face.vertices.size();
@@ -934,6 +942,124 @@ struct Builder {
     return true;
   }
 
+  // Whether the zip below can make only valid faces from a bottom chain of
+  // a and a top chain of b segments (after the end triangles of shared ends,
+  // neither more than twice the other).
+  static bool zippable(int a, int b, bool left_shared, bool right_shared, const Chain& high,
+                       const std::vector<int>& high_counts) {
+    if (left_shared && right_shared && a == 1 && b == 2 && high.runs.size() == 2 &&
+        high_counts[0] == 1 && high.runs[0].level != high.runs[1].level) {
+      return true;  // a short-row triangle with a boundary wale side
+    }
+    const bool room_for_both = a >= 2 && b >= 2;
+    const bool left = left_shared && (room_for_both || !right_shared) && a >= 1 && b >= 1;
+    const bool right =
+        right_shared && (room_for_both || !left_shared) && a >= 1 && b >= 1 && !(left && (a < 2 || b < 2));
+    const int na = a - left - right;
+    const int nb = b - left - right;
+    return (na == 0 && nb == 0) || (na > 0 && nb > 0 && na <= 2 * nb && nb <= 2 * na);
+  }
+
+  // Moves the longer boundary run at an end of the top chain (loop starts
+  // with its bottom chain) into the wale side beside it. False when neither
+  // end of the top chain is a boundary run or it has only one run.
+  static bool boundary_end_to_side(std::vector<Chain>& loop) {
+    std::size_t hi = 0;
+    while (hi < loop.size() && loop[hi].side != Side::High) ++hi;
+    if (hi == loop.size() || loop[hi].runs.size() < 2) return false;
+    std::vector<Run>& runs = loop[hi].runs;
+    const bool front = !runs.front().level;
+    const bool back = !runs.back().level;
+    if (!front && !back) return false;
+    if (front && (!back || runs.front().length >= runs.back().length)) {
+      Run run = std::move(runs.front());
+      runs.erase(runs.begin());
+      if (loop[hi - 1].side == Side::Wale) {
+        loop[hi - 1].runs.push_back(std::move(run));
+      } else {
+        Chain side;
+        side.side = Side::Wale;
+        side.runs.push_back(std::move(run));
+        loop.insert(loop.begin() + static_cast<std::ptrdiff_t>(hi), std::move(side));
+      }
+      return true;
+    }
+    Run run = std::move(runs.back());
+    runs.pop_back();
+    if (hi + 1 < loop.size() && loop[hi + 1].side == Side::Wale) {
+      loop[hi + 1].runs.insert(loop[hi + 1].runs.begin(), std::move(run));
+    } else {
+      Chain side;
+      side.side = Side::Wale;
+      side.runs.push_back(std::move(run));
+      loop.insert(loop.begin() + static_cast<std::ptrdiff_t>(hi) + 1, std::move(side));
+    }
+    return true;
+  }
+
+  // Splits the longest side of a fixed bottom chain whose face below is a
+  // knit stitch: that stitch becomes an increase (§6.3), and the bottom
+  // chain has one more side. False when no side qualifies.
+  bool split_side_below(const Chain& low) {
+    double longest = 0;
+    std::size_t best_curve = 0;
+    std::size_t best_index = 0;
+    std::size_t best_face = 0;
+    bool found = false;
+    for (const Run& run : low.runs) {
+      if (!run.level) continue;
+      auto it = curve_of_edge.find(undirected(run.halfedges.front()));
+      if (it == curve_of_edge.end()) continue;
+      const std::vector<int>& samples = curve_samples[at(it->second)];
+      for (std::size_t k = 0; k + 1 < samples.size(); ++k) {
+        for (const auto& [u, v] : {std::pair{samples[k], samples[k + 1]},
+                                   std::pair{samples[k + 1], samples[k]}}) {
+          auto below = face_below.find(key(u, v));
+          if (below == face_below.end()) continue;
+          if (mesh.faces[below->second].type != FaceType::Knit) continue;
+          const double length = (mesh.positions[at(u)] - mesh.positions[at(v)]).norm();
+          if (length > longest) {
+            longest = length;
+            best_curve = at(it->second);
+            best_index = k;
+            best_face = below->second;
+            found = true;
+          }
+        }
+      }
+    }
+    if (!found) return false;
+    std::vector<int>& samples = curve_samples[best_curve];
+    const int u = samples[best_index];
+    const int v = samples[best_index + 1];
+    const int middle = static_cast<int>(mesh.positions.size());
+    mesh.positions.push_back(0.5 * (mesh.positions[at(u)] + mesh.positions[at(v)]));
+    samples.insert(samples.begin() + static_cast<std::ptrdiff_t>(best_index) + 1, middle);
+    StitchFace& face = mesh.faces[best_face];
+    const std::size_t n = face.vertices.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const int a = static_cast<int>(face.vertices[i]);
+      const int b = static_cast<int>(face.vertices[(i + 1) % n]);
+      if (face.roles[i] != EdgeRole::CourseOut || !((a == u && b == v) || (a == v && b == u))) {
+        continue;
+      }
+      face.vertices.insert(face.vertices.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                           static_cast<std::uint32_t>(middle));
+      face.roles.insert(face.roles.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                        EdgeRole::CourseOut);
+      face.arcs.insert(face.arcs.begin() + static_cast<std::ptrdiff_t>(i) + 1, face.arcs[i]);
+      face.type = FaceType::Increase;
+      face_below.erase(key(b, a));
+      face_below[key(middle, a)] = best_face;
+      face_below[key(b, middle)] = best_face;
+      shaped_below.insert(key(middle, a));
+      shaped_below.insert(key(b, middle));
+      ++stats.sides_split_below;
+      return true;
+    }
+    throw std::logic_error("stitch meshing: a course-out side is not in its face");
+  }
+
   void strip(const std::string& where, std::vector<Chain> loop) {
     // Bring the loop to the form Low [Wale] High [Wale].
     int lows = 0;
@@ -1032,6 +1158,29 @@ struct Builder {
       // The top chain cannot shrink enough: lengthen the bottom one.
       rescale(loop.front(), low_fixed, low_counts,
               std::max(1, shared + (std::max(0, high_min - shared) + 1) / 2));
+    }
+    if (!zippable(std::accumulate(low_counts.begin(), low_counts.end(), 0),
+                  std::accumulate(high_counts.begin(), high_counts.end(), 0), left_wale == nullptr,
+                  right_wale == nullptr, *high, high_counts) &&
+        boundary_end_to_side(loop)) {
+      // A top chain of bind-off boundary around a short fixed bottom (the
+      // boundary runs almost along the rows): more stitches above than the
+      // row below can feed even by increasing every stitch. The bind-off
+      // stretch at the top chain's end becomes the row's wale side instead,
+      // and the strip is zipped again.
+      ++stats.boundary_sides;
+      strip(where, std::move(loop));
+      return;
+    }
+    // Still too many stitches above a fixed bottom: split a bottom side whose
+    // stitch below is a knit stitch (it becomes an increase), and fit the
+    // counts again.
+    if (!zippable(std::accumulate(low_counts.begin(), low_counts.end(), 0),
+                  std::accumulate(high_counts.begin(), high_counts.end(), 0), left_wale == nullptr,
+                  right_wale == nullptr, *high, high_counts) &&
+        split_side_below(loop.front())) {
+      strip(where, std::move(loop));
+      return;
     }
     std::vector<std::int32_t> low_arcs;
     std::vector<std::int32_t> high_arcs;
@@ -1257,7 +1406,7 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
     if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
     loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
   }
-  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}};
+  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   builder.mesh.course_mm = params.course_mm;
   builder.mesh.wale_mm = params.wale_mm;
   // Strips in row order, so level curves are sampled from below first.
@@ -1282,6 +1431,7 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   result.stats.lenses_skipped = builder.stats.lenses_skipped;
   result.stats.saddles_split = builder.stats.saddles_split;
   result.stats.invalid_faces = builder.stats.invalid_faces;
+  result.stats.boundary_sides = builder.stats.boundary_sides;
   result.mesh = std::move(builder.mesh);
   result.problems = std::move(builder.problems);
   for (std::string& line : check(result.mesh)) result.problems.push_back(std::move(line));

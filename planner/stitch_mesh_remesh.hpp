@@ -74,6 +74,12 @@ struct AnisoRemeshStats {
   int lenses_skipped = 0;  // strips of one side on each chain (nothing between them)
   int saddles_split = 0;   // X-shaped strips around a saddle of the row time, split in two
   int invalid_faces = 0;   // faces the zip could not make valid (see problems)
+  // Bind-off boundary stretches at a top chain's end made wale sides, because
+  // the row below could not feed that many stitches.
+  int boundary_sides = 0;
+  // Sides of a level curve split after the row below was made (its knit
+  // stitch there became an increase), because the row above needed more.
+  int sides_split_below = 0;
   double solve_seconds = 0;
   double total_seconds = 0;
 };
