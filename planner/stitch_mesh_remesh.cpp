@@ -177,6 +177,75 @@ Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
   return t;
 }
 
+// Row placement: t mapped monotonically so that rows are wale_mm tall on
+// average over each stretch of t. Where t is flat (labels that converge or
+// curl keep |grad t| below 1 / wale_mm), equal steps of t would give rows
+// that are too tall; there the mapped value rises faster. Per thin slab of t
+// the height is its area over the length of its level curve; the mapped
+// value at t is the height below t in rows (scaled so there is a whole
+// number of rows). Returns the mapped value per vertex; `bands` receives the
+// number of rows.
+Eigen::VectorXd row_levels(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                           const Eigen::VectorXd& t, const AnisoRemeshParams& params, int& bands) {
+  const double t_max = t.maxCoeff();
+  const int slabs = std::max(16, 8 * static_cast<int>(std::ceil(t_max)));
+  const double width = t_max > 0 ? t_max / slabs : 1.0;
+  std::vector<double> area(at(slabs), 0.0);
+  std::vector<double> length(at(slabs + 1), 0.0);  // level curve at slab boundary k
+  for (const Triangle& tri : tris) {
+    std::array<double, 3> v{};
+    std::array<Vec3, 3> p;
+    for (int i = 0; i < 3; ++i) {
+      v[at(i)] = t[tri.v[at(i)]];
+      p[at(i)] = disc.positions[at(tri.v[at(i)])];
+    }
+    const double lo = std::min({v[0], v[1], v[2]});
+    const double hi = std::max({v[0], v[1], v[2]});
+    // Area spread evenly over the triangle's range of t.
+    const int first = std::clamp(static_cast<int>(std::floor(lo / width)), 0, slabs - 1);
+    const int last = std::clamp(static_cast<int>(std::floor(hi / width)), 0, slabs - 1);
+    for (int k = first; k <= last; ++k) {
+      const double a = std::max(lo, k * width);
+      const double b = std::min(hi, (k + 1) * width);
+      area[at(k)] += hi > lo ? tri.area * std::max(0.0, b - a) / (hi - lo) : tri.area;
+    }
+    for (int k = first + 1; k <= last; ++k) {
+      const double level = k * width;
+      std::vector<Vec3> cross;
+      for (int i = 0; i < 3; ++i) {
+        const double va = v[at(i)];
+        const double vb = v[at((i + 1) % 3)];
+        if ((va < level) != (vb < level)) {
+          const double s = (level - va) / (vb - va);
+          cross.push_back((1 - s) * p[at(i)] + s * p[at((i + 1) % 3)]);
+        }
+      }
+      if (cross.size() == 2) length[at(k)] += (cross[1] - cross[0]).norm();
+    }
+  }
+  // Heights in mm per slab, each at most four times what unit speed gives
+  // (near the extremes of t the level curves shrink to points).
+  std::vector<double> below(at(slabs + 1), 0.0);
+  for (int k = 0; k < slabs; ++k) {
+    const double nominal = width * params.wale_mm;
+    const double curve = std::max(length[at(k)], length[at(k + 1)]);
+    double height = curve > 0 ? area[at(k)] / curve : nominal;
+    height = std::clamp(height, 0.25 * nominal, 4.0 * nominal);
+    below[at(k + 1)] = below[at(k)] + height;
+  }
+  const double total = below.back();
+  bands = std::max(1, static_cast<int>(std::lround(total / params.wale_mm)));
+  const double per_row = total > 0 ? total / bands : 1.0;
+  Eigen::VectorXd out(t.size());
+  for (int i = 0; i < t.size(); ++i) {
+    const double x = std::clamp(t[i] / width, 0.0, static_cast<double>(slabs));
+    const int k = std::min(slabs - 1, static_cast<int>(std::floor(x)));
+    const double f = x - k;
+    out[i] = ((1 - f) * below[at(k)] + f * below[at(k + 1)]) / per_row;
+  }
+  return out;
+}
+
 // ---------------------------------------------------------------------------
 // Step 2: pieces of triangles between consecutive levels.
 
@@ -779,7 +848,9 @@ struct Builder {
       const double len =
           (mesh.positions[at(l[at(i0 + i)])] - mesh.positions[at(t[at(j0 + j)])]).norm();
       const double d = (len - params.wale_mm) / params.wale_mm;
-      return d * d;
+      // Issue 8 counts wale sides within 15% of the target: one outside
+      // costs a step more than its squared error.
+      return d * d + (std::abs(d) > 0.15 ? params.outside_cost : 0.0);
     };
     // Fig. 7 rules of thumb as costs (docs/stitch-mesh.md): no increase or
     // decrease at a row's end on the boundary, none on a bottom side made by
@@ -1367,12 +1438,10 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   std::vector<Triangle> tris = triangulate(disc);
   const Eigen::VectorXd t = row_time(disc, tris, params);
   result.stats.solve_seconds = seconds_since(start);
-  const double t_max = t.maxCoeff();
-  const int bands = std::max(1, static_cast<int>(std::lround(t_max)));
-  const double spacing = t_max > 0 ? t_max / bands : 1.0;
+  int bands = 1;
+  const Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
   result.stats.rows = bands;
-  // The fitted gradients now describe t / spacing, as the levels do.
-  const Pieces pieces = slice(disc, tris, t, spacing, bands);
+  const Pieces pieces = slice(disc, tris, rows, 1.0, bands);
 
   // Strips: pieces of one band joined across their shared sides.
   const int num_pieces = static_cast<int>(pieces.band.size());

@@ -66,6 +66,8 @@ struct AnisoRemeshParams {
   // (docs/stitch-mesh.md): shaping at the fabric's edge, shaping on shaping,
   // an increase beside a decrease.
   double stability_cost = 0.5;
+  // Extra cost of a wale side more than 15% off wale_mm in the zip.
+  double outside_cost = 0.05;
 };
 
 struct AnisoRemeshStats {
