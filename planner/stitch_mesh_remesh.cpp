@@ -447,6 +447,8 @@ struct Builder {
   std::unordered_set<std::uint64_t> shaped_below;
   // Course-out sides (as the row above walks them) -> the face below.
   std::unordered_map<std::uint64_t, std::size_t> face_below;
+  // Level curve (by any of its undirected piece edges) -> fewest segments.
+  std::unordered_map<std::uint64_t, int> min_segments;
 
   int stitch_vertex(int piece_vertex) {
     auto [it, inserted] = anchor.emplace(piece_vertex, 0);
@@ -529,6 +531,14 @@ struct Builder {
     return samples;
   }
 
+  // Fewest segments a run may have: one, or for a level curve what the strip
+  // above it needs (plan_minimums).
+  int minimum(const Run& run) const {
+    if (!run.level) return 1;
+    auto it = min_segments.find(undirected(run.halfedges.front()));
+    return it == min_segments.end() ? 1 : it->second;
+  }
+
   // Segments per run of a chain: fixed for level curves sampled already,
   // else ~length / course_mm.
   std::vector<int> run_counts(const Chain& chain) const {
@@ -536,15 +546,44 @@ struct Builder {
     for (const Run& run : chain.runs) {
       const std::vector<int>* done = run.level ? sampled_curve(run) : nullptr;
       counts.push_back(done != nullptr ? static_cast<int>(done->size()) - 1
-                                       : auto_count(run.length));
+                                       : std::max(minimum(run), auto_count(run.length)));
     }
     return counts;
   }
 
+  // Before any strip is zipped: a strip whose bottom is one level curve and
+  // whose top has more runs (each needs a side) than twice that curve's
+  // sides can feed asks the strip below to sample the curve more finely.
+  void plan_minimums(const std::vector<Chain>& loop) {
+    const Chain* low = nullptr;
+    int lows = 0;
+    int highs = 0;
+    int top_runs = 0;
+    for (const Chain& c : loop) {
+      if (c.side == Side::Low) {
+        ++lows;
+        low = &c;
+      } else if (c.side == Side::High) {
+        ++highs;
+        top_runs = static_cast<int>(c.runs.size());
+      }
+    }
+    if (lows != 1 || highs != 1 || low->runs.size() != 1 || !low->runs.front().level) return;
+    int shared = 2;
+    for (const Chain& c : loop) shared -= c.side == Side::Wale;
+    shared = std::max(0, shared);
+    const int need = shared + (std::max(0, top_runs - shared) + 1) / 2;
+    if (need <= 1) return;
+    for (int h : low->runs.front().halfedges) {
+      int& m = min_segments[undirected(h)];
+      m = std::max(m, need);
+    }
+  }
+
   // Changes the free runs' counts (not fixed ones) so they sum to `total`
-  // where possible, in proportion to their length; each keeps at least one.
-  static void rescale(const Chain& chain, const std::vector<bool>& fixed, std::vector<int>& counts,
-                      int total) {
+  // where possible, in proportion to their length; each keeps its minimum.
+  void rescale(const Chain& chain, const std::vector<bool>& fixed, std::vector<int>& counts,
+               int total) const {
     int current = std::accumulate(counts.begin(), counts.end(), 0);
     for (int guard = 0; current != total && guard < 100000; ++guard) {
       // Add to the free run with the longest segments, or take from the one
@@ -556,7 +595,7 @@ struct Builder {
         const double per = chain.runs[r].length / counts[r];
         if (current < total) {
           if (best < 0 || per > best_value) best = static_cast<int>(r), best_value = per;
-        } else if (counts[r] > 1) {
+        } else if (counts[r] > minimum(chain.runs[r])) {
           if (best < 0 || per < best_value) best = static_cast<int>(r), best_value = per;
         }
       }
@@ -1068,9 +1107,56 @@ struct Builder {
     return true;
   }
 
+  // A decrease whose course-out side was split at `middle` (two sides in,
+  // two out) becomes two knit stitches sharing a wale edge.
+  void split_decrease(std::size_t index, int middle) {
+    const StitchFace old = mesh.faces[index];
+    const std::size_t n = old.vertices.size();
+    std::size_t corner = n;  // the vertex between the two course-in sides
+    std::size_t top = n;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (old.roles[i] == EdgeRole::CourseIn && old.roles[(i + n - 1) % n] == EdgeRole::CourseIn) {
+        corner = i;
+      }
+      if (static_cast<int>(old.vertices[i]) == middle) top = i;
+    }
+    if (corner == n || top == n) {
+      throw std::logic_error("stitch meshing: a split decrease has no corner to join");
+    }
+    auto part = [&](std::size_t from, std::size_t to) {
+      StitchFace f;
+      for (std::size_t i = from; i != to; i = (i + 1) % n) {
+        f.vertices.push_back(old.vertices[i]);
+        f.roles.push_back(old.roles[i]);
+        f.arcs.push_back(old.arcs[i]);
+      }
+      f.vertices.push_back(old.vertices[to]);
+      f.roles.push_back(EdgeRole::Wale);
+      f.arcs.push_back(kNoArc);
+      const std::optional<FaceType> type = classify_roles(f.roles);
+      if (type != FaceType::Knit) {
+        throw std::logic_error("stitch meshing: a split decrease did not give knit stitches");
+      }
+      f.type = FaceType::Knit;
+      return f;
+    };
+    mesh.faces[index] = part(corner, top);
+    mesh.faces.push_back(part(top, corner));
+    for (std::size_t f : {index, mesh.faces.size() - 1}) {
+      const StitchFace& face = mesh.faces[f];
+      for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+        if (face.roles[i] == EdgeRole::CourseOut) {
+          face_below[key(static_cast<int>(face.vertices[(i + 1) % face.vertices.size()]),
+                         static_cast<int>(face.vertices[i]))] = f;
+        }
+      }
+    }
+  }
+
   // Splits the longest side of a fixed bottom chain whose face below is a
-  // knit stitch: that stitch becomes an increase (§6.3), and the bottom
-  // chain has one more side. False when no side qualifies.
+  // knit stitch (it becomes an increase, §6.3) or a decrease (it becomes two
+  // knit stitches), so the bottom chain has one more side. False when no
+  // side qualifies.
   bool split_side_below(const Chain& low) {
     double longest = 0;
     std::size_t best_curve = 0;
@@ -1087,7 +1173,8 @@ struct Builder {
                                    std::pair{samples[k + 1], samples[k]}}) {
           auto below = face_below.find(key(u, v));
           if (below == face_below.end()) continue;
-          if (mesh.faces[below->second].type != FaceType::Knit) continue;
+          const FaceType type = mesh.faces[below->second].type;
+          if (type != FaceType::Knit && type != FaceType::Decrease) continue;
           const double length = (mesh.positions[at(u)] - mesh.positions[at(v)]).norm();
           if (length > longest) {
             longest = length;
@@ -1119,13 +1206,20 @@ struct Builder {
       face.roles.insert(face.roles.begin() + static_cast<std::ptrdiff_t>(i) + 1,
                         EdgeRole::CourseOut);
       face.arcs.insert(face.arcs.begin() + static_cast<std::ptrdiff_t>(i) + 1, face.arcs[i]);
-      face.type = FaceType::Increase;
       face_below.erase(key(b, a));
+      ++stats.sides_split_below;
+      if (face.type == FaceType::Decrease) {
+        // Two sides in, two out: a wale edge from the corner between the
+        // course-in sides to the new vertex makes two knit stitches.
+        shaped_below.erase(key(b, a));
+        split_decrease(best_face, middle);
+        return true;
+      }
+      face.type = FaceType::Increase;
       face_below[key(middle, a)] = best_face;
       face_below[key(b, middle)] = best_face;
       shaped_below.insert(key(middle, a));
       shaped_below.insert(key(b, middle));
-      ++stats.sides_split_below;
       return true;
     }
     throw std::logic_error("stitch meshing: a course-out side is not in its face");
@@ -1205,7 +1299,8 @@ struct Builder {
     std::vector<int> high_counts = run_counts(*high);
     const std::vector<bool> low_fixed = fixed_runs(loop.front());
     const std::vector<bool> high_fixed = fixed_runs(*high);
-    const int high_min = static_cast<int>(high->runs.size());
+    int high_min = 0;
+    for (const Run& run : high->runs) high_min += minimum(run);
     for (int attempt = 0; attempt < 2; ++attempt) {
       const int a = std::accumulate(low_counts.begin(), low_counts.end(), 0);
       const int b = std::accumulate(high_counts.begin(), high_counts.end(), 0);
@@ -1475,13 +1570,19 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
     if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
     loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
   }
-  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   builder.mesh.course_mm = params.course_mm;
   builder.mesh.wale_mm = params.wale_mm;
   // Strips in row order, so level curves are sampled from below first.
   std::vector<std::pair<int, int>> order;
   for (const auto& [root, strip_loops] : loops) order.push_back({pieces.band[at(root)], root});
   std::sort(order.begin(), order.end());
+  for (const auto& [band, root] : order) {
+    const std::vector<std::vector<int>>& strip_loops = loops[root];
+    if (strip_loops.size() == 1) {
+      builder.plan_minimums(builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris)));
+    }
+  }
   for (const auto& [band, root] : order) {
     const std::vector<std::vector<int>>& strip_loops = loops[root];
     ++builder.stats.strips;
