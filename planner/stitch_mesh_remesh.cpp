@@ -1063,8 +1063,8 @@ struct Builder {
     }
     const bool room_for_both = a >= 2 && b >= 2;
     const bool left = left_shared && (room_for_both || !right_shared) && a >= 1 && b >= 1;
-    const bool right =
-        right_shared && (room_for_both || !left_shared) && a >= 1 && b >= 1 && !(left && (a < 2 || b < 2));
+    const bool right = right_shared && (room_for_both || !left_shared) && a >= 1 && b >= 1 &&
+                       !(left && (a < 2 || b < 2));
     const int na = a - left - right;
     const int nb = b - left - right;
     return (na == 0 && nb == 0) || (na > 0 && nb > 0 && na <= 2 * nb && nb <= 2 * na);
@@ -1169,8 +1169,8 @@ struct Builder {
       if (it == curve_of_edge.end()) continue;
       const std::vector<int>& samples = curve_samples[at(it->second)];
       for (std::size_t k = 0; k + 1 < samples.size(); ++k) {
-        for (const auto& [u, v] : {std::pair{samples[k], samples[k + 1]},
-                                   std::pair{samples[k + 1], samples[k]}}) {
+        for (const auto& [u, v] :
+             {std::pair{samples[k], samples[k + 1]}, std::pair{samples[k + 1], samples[k]}}) {
           auto below = face_below.find(key(u, v));
           if (below == face_below.end()) continue;
           const FaceType type = mesh.faces[below->second].type;

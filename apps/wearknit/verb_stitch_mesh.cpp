@@ -70,7 +70,8 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
                           !(params.pentagon_cost >= 0) || !(params.stability_cost >= 0) ||
                           !(params.outside_cost >= 0))) {
     problem =
-        "--straighten, --label-weight, --pentagon-cost, --stability-cost and --outside-cost must not "
+        "--straighten, --label-weight, --pentagon-cost, --stability-cost and --outside-cost must "
+        "not "
         "be negative";
   }
   if (!problem.empty()) {
