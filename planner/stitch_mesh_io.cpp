@@ -259,6 +259,8 @@ std::string merge_stitch_report(const std::string& dir, const StitchMeshReport& 
         {"one_stitch_rows", report.stability.one_stitch_rows}}},
       {"saddles_split", report.stats.saddles_split},
       {"lenses_glued", report.stats.lenses_skipped},
+      {"bind_off_sides", report.stats.boundary_sides},
+      {"sides_split_below", report.stats.sides_split_below},
       {"boundary_loops", f.boundary_loops},
       {"euler_characteristic", f.euler_characteristic},
       {"remesh_seconds", report.stats.total_seconds},

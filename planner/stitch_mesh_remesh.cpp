@@ -177,6 +177,75 @@ Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
   return t;
 }
 
+// Row placement: t mapped monotonically so that rows are wale_mm tall on
+// average over each stretch of t. Where t is flat (labels that converge or
+// curl keep |grad t| below 1 / wale_mm), equal steps of t would give rows
+// that are too tall; there the mapped value rises faster. Per thin slab of t
+// the height is its area over the length of its level curve; the mapped
+// value at t is the height below t in rows (scaled so there is a whole
+// number of rows). Returns the mapped value per vertex; `bands` receives the
+// number of rows.
+Eigen::VectorXd row_levels(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                           const Eigen::VectorXd& t, const AnisoRemeshParams& params, int& bands) {
+  const double t_max = t.maxCoeff();
+  const int slabs = std::max(16, 8 * static_cast<int>(std::ceil(t_max)));
+  const double width = t_max > 0 ? t_max / slabs : 1.0;
+  std::vector<double> area(at(slabs), 0.0);
+  std::vector<double> length(at(slabs + 1), 0.0);  // level curve at slab boundary k
+  for (const Triangle& tri : tris) {
+    std::array<double, 3> v{};
+    std::array<Vec3, 3> p;
+    for (int i = 0; i < 3; ++i) {
+      v[at(i)] = t[tri.v[at(i)]];
+      p[at(i)] = disc.positions[at(tri.v[at(i)])];
+    }
+    const double lo = std::min({v[0], v[1], v[2]});
+    const double hi = std::max({v[0], v[1], v[2]});
+    // Area spread evenly over the triangle's range of t.
+    const int first = std::clamp(static_cast<int>(std::floor(lo / width)), 0, slabs - 1);
+    const int last = std::clamp(static_cast<int>(std::floor(hi / width)), 0, slabs - 1);
+    for (int k = first; k <= last; ++k) {
+      const double a = std::max(lo, k * width);
+      const double b = std::min(hi, (k + 1) * width);
+      area[at(k)] += hi > lo ? tri.area * std::max(0.0, b - a) / (hi - lo) : tri.area;
+    }
+    for (int k = first + 1; k <= last; ++k) {
+      const double level = k * width;
+      std::vector<Vec3> cross;
+      for (int i = 0; i < 3; ++i) {
+        const double va = v[at(i)];
+        const double vb = v[at((i + 1) % 3)];
+        if ((va < level) != (vb < level)) {
+          const double s = (level - va) / (vb - va);
+          cross.push_back((1 - s) * p[at(i)] + s * p[at((i + 1) % 3)]);
+        }
+      }
+      if (cross.size() == 2) length[at(k)] += (cross[1] - cross[0]).norm();
+    }
+  }
+  // Heights in mm per slab, each at most four times what unit speed gives
+  // (near the extremes of t the level curves shrink to points).
+  std::vector<double> below(at(slabs + 1), 0.0);
+  for (int k = 0; k < slabs; ++k) {
+    const double nominal = width * params.wale_mm;
+    const double curve = std::max(length[at(k)], length[at(k + 1)]);
+    double height = curve > 0 ? area[at(k)] / curve : nominal;
+    height = std::clamp(height, 0.25 * nominal, 4.0 * nominal);
+    below[at(k + 1)] = below[at(k)] + height;
+  }
+  const double total = below.back();
+  bands = std::max(1, static_cast<int>(std::lround(total / params.wale_mm)));
+  const double per_row = total > 0 ? total / bands : 1.0;
+  Eigen::VectorXd out(t.size());
+  for (int i = 0; i < t.size(); ++i) {
+    const double x = std::clamp(t[i] / width, 0.0, static_cast<double>(slabs));
+    const int k = std::min(slabs - 1, static_cast<int>(std::floor(x)));
+    const double f = x - k;
+    out[i] = ((1 - f) * below[at(k)] + f * below[at(k + 1)]) / per_row;
+  }
+  return out;
+}
+
 // ---------------------------------------------------------------------------
 // Step 2: pieces of triangles between consecutive levels.
 
@@ -376,6 +445,10 @@ struct Builder {
   AnisoRemeshStats stats;
   // Bottom sides (as the row above walks them) of increases and decreases.
   std::unordered_set<std::uint64_t> shaped_below;
+  // Course-out sides (as the row above walks them) -> the face below.
+  std::unordered_map<std::uint64_t, std::size_t> face_below;
+  // Level curve (by any of its undirected piece edges) -> fewest segments.
+  std::unordered_map<std::uint64_t, int> min_segments;
 
   int stitch_vertex(int piece_vertex) {
     auto [it, inserted] = anchor.emplace(piece_vertex, 0);
@@ -458,6 +531,14 @@ struct Builder {
     return samples;
   }
 
+  // Fewest segments a run may have: one, or for a level curve what the strip
+  // above it needs (plan_minimums).
+  int minimum(const Run& run) const {
+    if (!run.level) return 1;
+    auto it = min_segments.find(undirected(run.halfedges.front()));
+    return it == min_segments.end() ? 1 : it->second;
+  }
+
   // Segments per run of a chain: fixed for level curves sampled already,
   // else ~length / course_mm.
   std::vector<int> run_counts(const Chain& chain) const {
@@ -465,15 +546,44 @@ struct Builder {
     for (const Run& run : chain.runs) {
       const std::vector<int>* done = run.level ? sampled_curve(run) : nullptr;
       counts.push_back(done != nullptr ? static_cast<int>(done->size()) - 1
-                                       : auto_count(run.length));
+                                       : std::max(minimum(run), auto_count(run.length)));
     }
     return counts;
   }
 
+  // Before any strip is zipped: a strip whose bottom is one level curve and
+  // whose top has more runs (each needs a side) than twice that curve's
+  // sides can feed asks the strip below to sample the curve more finely.
+  void plan_minimums(const std::vector<Chain>& loop) {
+    const Chain* low = nullptr;
+    int lows = 0;
+    int highs = 0;
+    int top_runs = 0;
+    for (const Chain& c : loop) {
+      if (c.side == Side::Low) {
+        ++lows;
+        low = &c;
+      } else if (c.side == Side::High) {
+        ++highs;
+        top_runs = static_cast<int>(c.runs.size());
+      }
+    }
+    if (lows != 1 || highs != 1 || low->runs.size() != 1 || !low->runs.front().level) return;
+    int shared = 2;
+    for (const Chain& c : loop) shared -= c.side == Side::Wale;
+    shared = std::max(0, shared);
+    const int need = shared + (std::max(0, top_runs - shared) + 1) / 2;
+    if (need <= 1) return;
+    for (int h : low->runs.front().halfedges) {
+      int& m = min_segments[undirected(h)];
+      m = std::max(m, need);
+    }
+  }
+
   // Changes the free runs' counts (not fixed ones) so they sum to `total`
-  // where possible, in proportion to their length; each keeps at least one.
-  static void rescale(const Chain& chain, const std::vector<bool>& fixed, std::vector<int>& counts,
-                      int total) {
+  // where possible, in proportion to their length; each keeps its minimum.
+  void rescale(const Chain& chain, const std::vector<bool>& fixed, std::vector<int>& counts,
+               int total) const {
     int current = std::accumulate(counts.begin(), counts.end(), 0);
     for (int guard = 0; current != total && guard < 100000; ++guard) {
       // Add to the free run with the longest segments, or take from the one
@@ -485,7 +595,7 @@ struct Builder {
         const double per = chain.runs[r].length / counts[r];
         if (current < total) {
           if (best < 0 || per > best_value) best = static_cast<int>(r), best_value = per;
-        } else if (counts[r] > 1) {
+        } else if (counts[r] > minimum(chain.runs[r])) {
           if (best < 0 || per < best_value) best = static_cast<int>(r), best_value = per;
         }
       }
@@ -539,6 +649,12 @@ struct Builder {
     const std::optional<FaceType> type = classify_roles(face.roles);
     if (!type) ++stats.invalid_faces;
     face.type = type.value_or(FaceType::Knit);
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      if (face.roles[i] == EdgeRole::CourseOut) {
+        face_below[key(static_cast<int>(face.vertices[(i + 1) % face.vertices.size()]),
+                       static_cast<int>(face.vertices[i]))] = mesh.faces.size();
+      }
+    }
     if (face.type == FaceType::Increase || face.type == FaceType::Decrease) {
       // Remember the pentagon's top sides, as the row above walks them.
       const std::size_t n = face.vertices.size();
@@ -771,7 +887,9 @@ struct Builder {
       const double len =
           (mesh.positions[at(l[at(i0 + i)])] - mesh.positions[at(t[at(j0 + j)])]).norm();
       const double d = (len - params.wale_mm) / params.wale_mm;
-      return d * d;
+      // Issue 8 counts wale sides within 15% of the target: one outside
+      // costs a step more than its squared error.
+      return d * d + (std::abs(d) > 0.15 ? params.outside_cost : 0.0);
     };
     // Fig. 7 rules of thumb as costs (docs/stitch-mesh.md): no increase or
     // decrease at a row's end on the boundary, none on a bottom side made by
@@ -934,6 +1052,179 @@ struct Builder {
     return true;
   }
 
+  // Whether the zip below can make only valid faces from a bottom chain of
+  // a and a top chain of b segments (after the end triangles of shared ends,
+  // neither more than twice the other).
+  static bool zippable(int a, int b, bool left_shared, bool right_shared, const Chain& high,
+                       const std::vector<int>& high_counts) {
+    if (left_shared && right_shared && a == 1 && b == 2 && high.runs.size() == 2 &&
+        high_counts[0] == 1 && high.runs[0].level != high.runs[1].level) {
+      return true;  // a short-row triangle with a boundary wale side
+    }
+    const bool room_for_both = a >= 2 && b >= 2;
+    const bool left = left_shared && (room_for_both || !right_shared) && a >= 1 && b >= 1;
+    const bool right = right_shared && (room_for_both || !left_shared) && a >= 1 && b >= 1 &&
+                       !(left && (a < 2 || b < 2));
+    const int na = a - left - right;
+    const int nb = b - left - right;
+    return (na == 0 && nb == 0) || (na > 0 && nb > 0 && na <= 2 * nb && nb <= 2 * na);
+  }
+
+  // Moves the longer boundary run at an end of the top chain (loop starts
+  // with its bottom chain) into the wale side beside it. False when neither
+  // end of the top chain is a boundary run or it has only one run.
+  static bool boundary_end_to_side(std::vector<Chain>& loop) {
+    std::size_t hi = 0;
+    while (hi < loop.size() && loop[hi].side != Side::High) ++hi;
+    if (hi == loop.size() || loop[hi].runs.size() < 2) return false;
+    std::vector<Run>& runs = loop[hi].runs;
+    const bool front = !runs.front().level;
+    const bool back = !runs.back().level;
+    if (!front && !back) return false;
+    if (front && (!back || runs.front().length >= runs.back().length)) {
+      Run run = std::move(runs.front());
+      runs.erase(runs.begin());
+      if (loop[hi - 1].side == Side::Wale) {
+        loop[hi - 1].runs.push_back(std::move(run));
+      } else {
+        Chain side;
+        side.side = Side::Wale;
+        side.runs.push_back(std::move(run));
+        loop.insert(loop.begin() + static_cast<std::ptrdiff_t>(hi), std::move(side));
+      }
+      return true;
+    }
+    Run run = std::move(runs.back());
+    runs.pop_back();
+    if (hi + 1 < loop.size() && loop[hi + 1].side == Side::Wale) {
+      loop[hi + 1].runs.insert(loop[hi + 1].runs.begin(), std::move(run));
+    } else {
+      Chain side;
+      side.side = Side::Wale;
+      side.runs.push_back(std::move(run));
+      loop.insert(loop.begin() + static_cast<std::ptrdiff_t>(hi) + 1, std::move(side));
+    }
+    return true;
+  }
+
+  // A decrease whose course-out side was split at `middle` (two sides in,
+  // two out) becomes two knit stitches sharing a wale edge.
+  void split_decrease(std::size_t index, int middle) {
+    const StitchFace old = mesh.faces[index];
+    const std::size_t n = old.vertices.size();
+    std::size_t corner = n;  // the vertex between the two course-in sides
+    std::size_t top = n;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (old.roles[i] == EdgeRole::CourseIn && old.roles[(i + n - 1) % n] == EdgeRole::CourseIn) {
+        corner = i;
+      }
+      if (static_cast<int>(old.vertices[i]) == middle) top = i;
+    }
+    if (corner == n || top == n) {
+      throw std::logic_error("stitch meshing: a split decrease has no corner to join");
+    }
+    auto part = [&](std::size_t from, std::size_t to) {
+      StitchFace f;
+      for (std::size_t i = from; i != to; i = (i + 1) % n) {
+        f.vertices.push_back(old.vertices[i]);
+        f.roles.push_back(old.roles[i]);
+        f.arcs.push_back(old.arcs[i]);
+      }
+      f.vertices.push_back(old.vertices[to]);
+      f.roles.push_back(EdgeRole::Wale);
+      f.arcs.push_back(kNoArc);
+      const std::optional<FaceType> type = classify_roles(f.roles);
+      if (type != FaceType::Knit) {
+        throw std::logic_error("stitch meshing: a split decrease did not give knit stitches");
+      }
+      f.type = FaceType::Knit;
+      return f;
+    };
+    mesh.faces[index] = part(corner, top);
+    mesh.faces.push_back(part(top, corner));
+    for (std::size_t f : {index, mesh.faces.size() - 1}) {
+      const StitchFace& face = mesh.faces[f];
+      for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+        if (face.roles[i] == EdgeRole::CourseOut) {
+          face_below[key(static_cast<int>(face.vertices[(i + 1) % face.vertices.size()]),
+                         static_cast<int>(face.vertices[i]))] = f;
+        }
+      }
+    }
+  }
+
+  // Splits the longest side of a fixed bottom chain whose face below is a
+  // knit stitch (it becomes an increase, §6.3) or a decrease (it becomes two
+  // knit stitches), so the bottom chain has one more side. False when no
+  // side qualifies.
+  bool split_side_below(const Chain& low) {
+    double longest = 0;
+    std::size_t best_curve = 0;
+    std::size_t best_index = 0;
+    std::size_t best_face = 0;
+    bool found = false;
+    for (const Run& run : low.runs) {
+      if (!run.level) continue;
+      auto it = curve_of_edge.find(undirected(run.halfedges.front()));
+      if (it == curve_of_edge.end()) continue;
+      const std::vector<int>& samples = curve_samples[at(it->second)];
+      for (std::size_t k = 0; k + 1 < samples.size(); ++k) {
+        for (const auto& [u, v] :
+             {std::pair{samples[k], samples[k + 1]}, std::pair{samples[k + 1], samples[k]}}) {
+          auto below = face_below.find(key(u, v));
+          if (below == face_below.end()) continue;
+          const FaceType type = mesh.faces[below->second].type;
+          if (type != FaceType::Knit && type != FaceType::Decrease) continue;
+          const double length = (mesh.positions[at(u)] - mesh.positions[at(v)]).norm();
+          if (length > longest) {
+            longest = length;
+            best_curve = at(it->second);
+            best_index = k;
+            best_face = below->second;
+            found = true;
+          }
+        }
+      }
+    }
+    if (!found) return false;
+    std::vector<int>& samples = curve_samples[best_curve];
+    const int u = samples[best_index];
+    const int v = samples[best_index + 1];
+    const int middle = static_cast<int>(mesh.positions.size());
+    mesh.positions.push_back(0.5 * (mesh.positions[at(u)] + mesh.positions[at(v)]));
+    samples.insert(samples.begin() + static_cast<std::ptrdiff_t>(best_index) + 1, middle);
+    StitchFace& face = mesh.faces[best_face];
+    const std::size_t n = face.vertices.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const int a = static_cast<int>(face.vertices[i]);
+      const int b = static_cast<int>(face.vertices[(i + 1) % n]);
+      if (face.roles[i] != EdgeRole::CourseOut || !((a == u && b == v) || (a == v && b == u))) {
+        continue;
+      }
+      face.vertices.insert(face.vertices.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                           static_cast<std::uint32_t>(middle));
+      face.roles.insert(face.roles.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                        EdgeRole::CourseOut);
+      face.arcs.insert(face.arcs.begin() + static_cast<std::ptrdiff_t>(i) + 1, face.arcs[i]);
+      face_below.erase(key(b, a));
+      ++stats.sides_split_below;
+      if (face.type == FaceType::Decrease) {
+        // Two sides in, two out: a wale edge from the corner between the
+        // course-in sides to the new vertex makes two knit stitches.
+        shaped_below.erase(key(b, a));
+        split_decrease(best_face, middle);
+        return true;
+      }
+      face.type = FaceType::Increase;
+      face_below[key(middle, a)] = best_face;
+      face_below[key(b, middle)] = best_face;
+      shaped_below.insert(key(middle, a));
+      shaped_below.insert(key(b, middle));
+      return true;
+    }
+    throw std::logic_error("stitch meshing: a course-out side is not in its face");
+  }
+
   void strip(const std::string& where, std::vector<Chain> loop) {
     // Bring the loop to the form Low [Wale] High [Wale].
     int lows = 0;
@@ -1008,7 +1299,8 @@ struct Builder {
     std::vector<int> high_counts = run_counts(*high);
     const std::vector<bool> low_fixed = fixed_runs(loop.front());
     const std::vector<bool> high_fixed = fixed_runs(*high);
-    const int high_min = static_cast<int>(high->runs.size());
+    int high_min = 0;
+    for (const Run& run : high->runs) high_min += minimum(run);
     for (int attempt = 0; attempt < 2; ++attempt) {
       const int a = std::accumulate(low_counts.begin(), low_counts.end(), 0);
       const int b = std::accumulate(high_counts.begin(), high_counts.end(), 0);
@@ -1032,6 +1324,29 @@ struct Builder {
       // The top chain cannot shrink enough: lengthen the bottom one.
       rescale(loop.front(), low_fixed, low_counts,
               std::max(1, shared + (std::max(0, high_min - shared) + 1) / 2));
+    }
+    if (!zippable(std::accumulate(low_counts.begin(), low_counts.end(), 0),
+                  std::accumulate(high_counts.begin(), high_counts.end(), 0), left_wale == nullptr,
+                  right_wale == nullptr, *high, high_counts) &&
+        boundary_end_to_side(loop)) {
+      // A top chain of bind-off boundary around a short fixed bottom (the
+      // boundary runs almost along the rows): more stitches above than the
+      // row below can feed even by increasing every stitch. The bind-off
+      // stretch at the top chain's end becomes the row's wale side instead,
+      // and the strip is zipped again.
+      ++stats.boundary_sides;
+      strip(where, std::move(loop));
+      return;
+    }
+    // Still too many stitches above a fixed bottom: split a bottom side whose
+    // stitch below is a knit stitch (it becomes an increase), and fit the
+    // counts again.
+    if (!zippable(std::accumulate(low_counts.begin(), low_counts.end(), 0),
+                  std::accumulate(high_counts.begin(), high_counts.end(), 0), left_wale == nullptr,
+                  right_wale == nullptr, *high, high_counts) &&
+        split_side_below(loop.front())) {
+      strip(where, std::move(loop));
+      return;
     }
     std::vector<std::int32_t> low_arcs;
     std::vector<std::int32_t> high_arcs;
@@ -1218,12 +1533,10 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   std::vector<Triangle> tris = triangulate(disc);
   const Eigen::VectorXd t = row_time(disc, tris, params);
   result.stats.solve_seconds = seconds_since(start);
-  const double t_max = t.maxCoeff();
-  const int bands = std::max(1, static_cast<int>(std::lround(t_max)));
-  const double spacing = t_max > 0 ? t_max / bands : 1.0;
+  int bands = 1;
+  const Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
   result.stats.rows = bands;
-  // The fitted gradients now describe t / spacing, as the levels do.
-  const Pieces pieces = slice(disc, tris, t, spacing, bands);
+  const Pieces pieces = slice(disc, tris, rows, 1.0, bands);
 
   // Strips: pieces of one band joined across their shared sides.
   const int num_pieces = static_cast<int>(pieces.band.size());
@@ -1257,13 +1570,19 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
     if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
     loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
   }
-  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}};
+  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   builder.mesh.course_mm = params.course_mm;
   builder.mesh.wale_mm = params.wale_mm;
   // Strips in row order, so level curves are sampled from below first.
   std::vector<std::pair<int, int>> order;
   for (const auto& [root, strip_loops] : loops) order.push_back({pieces.band[at(root)], root});
   std::sort(order.begin(), order.end());
+  for (const auto& [band, root] : order) {
+    const std::vector<std::vector<int>>& strip_loops = loops[root];
+    if (strip_loops.size() == 1) {
+      builder.plan_minimums(builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris)));
+    }
+  }
   for (const auto& [band, root] : order) {
     const std::vector<std::vector<int>>& strip_loops = loops[root];
     ++builder.stats.strips;
@@ -1282,6 +1601,7 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   result.stats.lenses_skipped = builder.stats.lenses_skipped;
   result.stats.saddles_split = builder.stats.saddles_split;
   result.stats.invalid_faces = builder.stats.invalid_faces;
+  result.stats.boundary_sides = builder.stats.boundary_sides;
   result.mesh = std::move(builder.mesh);
   result.problems = std::move(builder.problems);
   for (std::string& line : check(result.mesh)) result.problems.push_back(std::move(line));

@@ -8,8 +8,9 @@
 //     it in least squares (|grad t| = 1 / wale_mm), then straightened a few
 //     times towards unit speed so rows keep their height where the labels
 //     curl.
-//  2. Rows: t is cut at K-1 evenly spaced levels (K = round(t_max), so each
-//     band between levels is one row of height ~wale_mm). Each band component
+//  2. Rows: t is cut at K-1 levels placed by height (area over level-curve
+//     length per thin slab of t), so each band between levels is one row of
+//     height ~wale_mm even where t is flat. Each band component
 //     is a strip: bottom chain (the level below, or a cast-on boundary),
 //     top chain (the level above, or a bind-off boundary) and at most two
 //     side boundaries that become wale edges.
@@ -19,8 +20,10 @@
 //  4. §6.3 faces: each strip is zipped into quads, pentagons (two bottom or two
 //     top sides: decrease / increase) and, where a strip ends in a point,
 //     short-row triangles. Zipping never makes another face as long as one
-//     chain is at most twice the other; faces it cannot make valid are
-//     reported.
+//     chain is at most twice the other; where a top chain needs more than a
+//     fixed bottom can feed, a bind-off stretch becomes a wale side or a side
+//     below is split (docs/stitch-mesh.md); faces it still cannot make valid
+//     are reported.
 #pragma once
 
 #include <Eigen/Core>
@@ -66,6 +69,8 @@ struct AnisoRemeshParams {
   // (docs/stitch-mesh.md): shaping at the fabric's edge, shaping on shaping,
   // an increase beside a decrease.
   double stability_cost = 0.5;
+  // Extra cost of a wale side more than 15% off wale_mm in the zip.
+  double outside_cost = 0.05;
 };
 
 struct AnisoRemeshStats {
@@ -74,6 +79,12 @@ struct AnisoRemeshStats {
   int lenses_skipped = 0;  // strips of one side on each chain (nothing between them)
   int saddles_split = 0;   // X-shaped strips around a saddle of the row time, split in two
   int invalid_faces = 0;   // faces the zip could not make valid (see problems)
+  // Bind-off boundary stretches at a top chain's end made wale sides, because
+  // the row below could not feed that many stitches.
+  int boundary_sides = 0;
+  // Sides of a level curve split after the row below was made (its knit
+  // stitch there became an increase), because the row above needed more.
+  int sides_split_below = 0;
   double solve_seconds = 0;
   double total_seconds = 0;
 };
