@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "knitout/output_file.hpp"
+#include "planner/stitch_mesh.hpp"
 #include "tests/planner/schedule_fixtures.hpp"
 
 int main(int argc, char** argv) {
@@ -13,9 +14,8 @@ int main(int argc, char** argv) {
   }
   std::filesystem::create_directories(argv[1]);
   const std::string failure = knitout::write_file_atomically(
-      (std::filesystem::path(argv[1]) / "stitch-mesh.smobj").string(), [](std::ostream& out) {
-        planner::fixtures::write_smobj_text(out, planner::fixtures::cover_like());
-      });
+      (std::filesystem::path(argv[1]) / "stitch-mesh.smobj").string(),
+      [](std::ostream& out) { planner::write_smobj(out, planner::fixtures::cover_like()); });
   if (!failure.empty()) {
     std::cerr << "make_cover_smobj: " << failure << '\n';
     return 2;

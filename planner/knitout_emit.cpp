@@ -1,6 +1,7 @@
 #include "planner/knitout_emit.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -27,8 +28,23 @@ class Emitter {
 
   EmittedPiece run(const Piece& piece) {
     header();
+    // The rows (indices in this piece, ascending) that knit, tuck or land a
+    // loop on each needle: a bind-off tail is parked where no later row
+    // needs the needle, or failing that where the next one needs it latest.
+    for (std::size_t k = 0; k < piece.rows.size(); ++k) {
+      for (int f : s_.rows[static_cast<std::size_t>(piece.rows[k])].faces) {
+        for (int e : s_.faces[static_cast<std::size_t>(f)].out) {
+          auto& rows = uses_[needle(e)];
+          if (rows.empty() || rows.back() != static_cast<int>(k))
+            rows.push_back(static_cast<int>(k));
+        }
+      }
+    }
     int row_index = 0;
-    for (int r : piece.rows) knit_row(r, row_index++);
+    for (int r : piece.rows) {
+      row_index_ = row_index;
+      knit_row(r, row_index++);
+    }
     if (in_) {
       release_if_pending();
       end_pass();
@@ -136,14 +152,62 @@ class Emitter {
     src.clear();
     ++result_.stats.transfers;
   }
+  // A bind-off tail on a needle this row needs moves to a needle needed
+  // later or never (park); only when no needle within the racking limit is
+  // free is it dropped (which lets its chain unravel: V053).
   void drop_tail(int n) {
     auto& loops = front_[n];
     if (std::find(loops.begin(), loops.end(), kTail) == loops.end()) return;
     if (loops.size() != 1)
       throw std::logic_error("a bind-off tail shares f" + std::to_string(n) + " with other loops");
+    const int to = parking_needle(n, row_index_ - 1, +1);
+    if (to != n) {
+      move_loop(n, to);
+      front_[to].assign(1, kTail);
+      return;
+    }
     touch(PassKey{'d', 0, racking_}, n);
     line("drop f" + std::to_string(n));
     loops.clear();
+  }
+  // The first row after row `after` that needs needle n (INT_MAX: none).
+  int next_use(int n, int after) const {
+    auto it = uses_.find(n);
+    if (it == uses_.end()) return std::numeric_limits<int>::max();
+    auto next = std::upper_bound(it->second.begin(), it->second.end(), after);
+    return next == it->second.end() ? std::numeric_limits<int>::max() : *next;
+  }
+  bool needed_later(int n) const {
+    return next_use(n, row_index_) != std::numeric_limits<int>::max();
+  }
+  // Where a tail on `from` should wait after row `after`: among the needles
+  // within the racking limit that are empty on both beds, the one whose next
+  // use comes latest (never, best), nearest first, `prefer` side first on
+  // ties; `from` itself when none is better.
+  int parking_needle(int from, int after, int prefer) {
+    int best = from;
+    int best_use = next_use(from, after);
+    for (int d = 1; d <= 8; ++d) {
+      for (int n : {from + prefer * d, from - prefer * d}) {
+        if (n < params_.first_needle || n > params_.machine_needles) continue;
+        if (!front_[n].empty() || !back_[n].empty()) continue;
+        const int use = next_use(n, after);
+        if (use > best_use) {
+          best = n;
+          best_use = use;
+        }
+      }
+    }
+    return best;
+  }
+  void move_loop(int from, int to) {
+    end_pass();
+    rack(0);
+    xfer('f', from, 'b', from);
+    rack(to - from);
+    xfer('b', from, 'f', to);
+    rack(0);
+    end_pass();
   }
   void bring_in() {
     line("inhook " + params_.carrier);
@@ -377,16 +441,14 @@ class Emitter {
       holder = tops[i - 1];
       std::reverse(run.begin(), run.end());
       chain_dir = -dir;
+    } else if (needed_later(needle(run.back())) && !needed_later(needle(run.front()))) {
+      // The top of a branch: its chain ends where no later row needs the
+      // needle, so its last loop never has to be dropped (a dropped last
+      // loop lets the chain unravel, V053).
+      std::reverse(run.begin(), run.end());
+      chain_dir = -dir;
     }
-    const auto move = [&](int from, int to) {
-      end_pass();
-      rack(0);
-      xfer('f', from, 'b', from);
-      rack(to - from);
-      xfer('b', from, 'f', to);
-      rack(0);
-      end_pass();
-    };
+    const auto move = [&](int from, int to) { move_loop(from, to); };
     if (run.size() > 1) {
       end_pass();
       cut_yarn_if_far(needle(run[0]));
@@ -399,7 +461,16 @@ class Emitter {
     }
     const int last = needle(run.back());
     if (holder == kNone) {
-      front_[last].assign(1, kTail);
+      // Both ends are needed later: the last loop waits beside the chain's
+      // end, where the next row needing the needle comes latest (never,
+      // best); that row moves it on again (drop_tail).
+      int parked = last;
+      if (needed_later(last)) {
+        const int away = needle(run.back()) >= needle(run.front()) ? +1 : -1;
+        parked = parking_needle(last, row_index_, away);
+      }
+      if (parked != last) move(last, parked);
+      front_[parked].assign(1, kTail);
       return;
     }
     move(last, needle(holder));
@@ -423,7 +494,9 @@ class Emitter {
   int lo_ = 0, hi_ = 0, last_ = kNoNeedle;
   int min_needle_ = kNoNeedle, max_needle_ = -kNoNeedle;
   std::map<int, std::vector<int>> front_, back_;
-  std::map<int, int> where_;  // course edge -> front needle of its loop
+  std::map<int, int> where_;              // course edge -> front needle of its loop
+  std::map<int, std::vector<int>> uses_;  // needle -> rows (indices in the piece) that need it
+  int row_index_ = 0;
 };
 
 }  // namespace

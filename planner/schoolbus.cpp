@@ -65,10 +65,14 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
                                std::to_string(riders[i].at));
     }
     std::map<int, int> landing;  // front needle -> destination of who got off there
+    // A rider gets off once per round: one that stopped on its way (at a
+    // positive racking) must not ride on from its stop later in the round.
+    std::set<std::size_t> got_off;
     for (int sign : {+1, -1}) {
       for (int step = 1; step <= max_racking; ++step) {
         const int r = sign * step;
         for (std::size_t i : aboard) {
+          if (got_off.count(i) != 0) continue;
           Rider& rider = riders[i];
           const int left = rider.to - rider.at;
           if (left == 0 || (left > 0) != (sign > 0)) continue;
@@ -81,6 +85,7 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
           landing[stop] = rider.to;
           plan.push_back({r, false, stop, rider.at});
           rider.at = stop;
+          got_off.insert(i);
           if (rider.at == rider.to) arrived.insert(stop);
         }
       }

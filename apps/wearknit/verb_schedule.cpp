@@ -19,7 +19,7 @@
 #include "planner/knitout_emit.hpp"
 #include "planner/piece_layout.hpp"
 #include "planner/schedule.hpp"
-#include "planner/smobj_read.hpp"
+#include "planner/stitch_mesh.hpp"
 #include "simulators/bed/bed_view.hpp"
 #include "simulators/bed/machine.hpp"
 #include "simulators/bed/profile.hpp"
@@ -105,12 +105,20 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
     return kExitUsage;
   }
   knitout::DiagnosticSink sink;
-  const planner::StitchMesh mesh = planner::read_smobj_file(smobj, sink);
-  if (sink.has_errors()) {
+  // The stitch stage's own reader (planner/stitch_mesh.hpp): the scheduler
+  // reads exactly what `wearknit stitch-mesh` writes, cut-arcs included.
+  std::ifstream smobj_in(smobj, std::ios::binary);
+  if (!smobj_in) {
+    sink.error(smobj, 0, 0, "S900", "cannot open the stitch mesh");
     print_diagnostics(context, sink.diagnostics(), *format);
-    const bool missing = sink.diagnostics().front().code == "S900";
-    return missing ? kExitUsage : kExitInvalid;
+    return kExitUsage;
   }
+  const std::optional<planner::StitchMesh> read = planner::parse_smobj(smobj_in, smobj, sink);
+  if (!read) {
+    print_diagnostics(context, sink.diagnostics(), *format);
+    return kExitInvalid;
+  }
+  const planner::StitchMesh& mesh = *read;
   planner::ScheduleParams params;
   params.trials = trials;
   params.time_budget_s = values.count("time-budget") ? time_budget : 0;

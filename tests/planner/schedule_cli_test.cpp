@@ -1,4 +1,5 @@
-// End-to-end tests of `wearknit schedule` and of the .smobj reader it uses.
+// End-to-end tests of `wearknit schedule` on folders holding what the stitch
+// stage writes (planner::write_smobj), read back with planner::parse_smobj.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,7 +8,7 @@
 #include <sstream>
 
 #include "knitout/parser.hpp"
-#include "planner/smobj_read.hpp"
+#include "planner/stitch_mesh.hpp"
 #include "tests/planner/bed_check.hpp"
 #include "tests/planner/schedule_fixtures.hpp"
 #include "tests/test_support.hpp"
@@ -21,54 +22,9 @@ using nlohmann::json;
 fs::path plan_folder(const StitchMesh& mesh, const std::string& prefix) {
   const fs::path dir = wearknit::test::make_temp_dir(prefix);
   std::ostringstream text;
-  fixtures::write_smobj_text(text, mesh);
+  write_smobj(text, mesh);
   wearknit::test::write_file(dir / "stitch-mesh.smobj", text.str());
   return dir;
-}
-
-TEST(SmobjReadTest, ReadsBackFacesRolesAndTypes) {
-  const StitchMesh mesh = fixtures::short_rows(10, 2, true);
-  std::ostringstream text;
-  fixtures::write_smobj_text(text, mesh);
-  std::istringstream in(text.str());
-  knitout::DiagnosticSink sink;
-  const StitchMesh back = read_smobj(in, "m.smobj", sink);
-  ASSERT_FALSE(sink.has_errors());
-  ASSERT_EQ(back.faces.size(), mesh.faces.size());
-  ASSERT_EQ(back.positions.size(), mesh.positions.size());
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    EXPECT_EQ(back.faces[f].vertices, mesh.faces[f].vertices);
-    EXPECT_EQ(back.faces[f].roles, mesh.faces[f].roles);
-    EXPECT_EQ(back.faces[f].type, mesh.faces[f].type);
-  }
-}
-
-TEST(SmobjReadTest, RejectsTypeOutsideTheLibrary) {
-  std::istringstream in("L knit -l y +l y\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nT 2\n");
-  knitout::DiagnosticSink sink;
-  read_smobj(in, "m.smobj", sink);
-  ASSERT_EQ(sink.error_count(), 1u);
-  EXPECT_EQ(knitout::format(sink.diagnostics()[0]),
-            "m.smobj:7: error: [S903] face type '2' is not an index into the 1-entry face library");
-}
-
-TEST(SmobjReadTest, AcceptsTheSameFaceWithTypeInsideTheLibrary) {
-  std::istringstream in("L knit -l y +l y\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nT 1\n");
-  knitout::DiagnosticSink sink;
-  const StitchMesh mesh = read_smobj(in, "m.smobj", sink);
-  EXPECT_FALSE(sink.has_errors());
-  ASSERT_EQ(mesh.faces.size(), 1u);
-  EXPECT_EQ(mesh.faces[0].type, FaceType::Knit);
-}
-
-TEST(SmobjReadTest, RejectsUndirectedLoopEdge) {
-  std::istringstream in("L knit l y +l y\n");
-  knitout::DiagnosticSink sink;
-  read_smobj(in, "m.smobj", sink);
-  ASSERT_EQ(sink.error_count(), 1u);
-  EXPECT_EQ(knitout::format(sink.diagnostics()[0]),
-            "m.smobj:1: error: [S902] library face 'knit': edge type 'l' is neither a directed "
-            "loop edge (-l/+l) nor a yarn edge (y)");
 }
 
 TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
@@ -128,14 +84,46 @@ TEST(ScheduleCliTest, MissingStitchMeshIsAnIoError) {
 }
 
 TEST(ScheduleCliTest, UnschedulableMeshIsInvalidInput) {
-  StitchMesh mesh = fixtures::rectangle(3, 2);
-  mesh.faces[4].roles = {EdgeRole::Wale, EdgeRole::Wale, EdgeRole::CourseOut, EdgeRole::Wale};
-  const fs::path dir = plan_folder(mesh, "sched-bad");
+  // A valid stitch mesh (it passes planner::check) that no machine can knit:
+  // one row of 600 stitches on a 540-needle bed.
+  const fs::path dir = plan_folder(fixtures::rectangle(600, 1), "sched-wide");
+  const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 1");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, (dir / "stitch-mesh.smobj").string() +
+                            ": error: [S910] piece 1 is 600 needles wide; the machine has 540\n");
+  EXPECT_FALSE(fs::exists(dir / "pieces"));
+}
+
+TEST(ScheduleCliTest, NarrowerTwinIsScheduled) {
+  const fs::path dir = plan_folder(fixtures::rectangle(500, 1), "sched-narrow");
+  const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 1 -q");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(fs::exists(dir / "pieces" / "piece-1.k"));
+}
+
+// The stitch stage's reader judges the file: its diagnostics (P08x) name the
+// line, and nothing is written.
+TEST(ScheduleCliTest, MalformedStitchMeshIsInvalidInput) {
+  const fs::path dir = wearknit::test::make_temp_dir("sched-malformed");
+  wearknit::test::write_file(dir / "stitch-mesh.smobj",
+                             "L knit -l1 y1 +l1 y1\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                             "f 1 2 3 4\nT 2\n");
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string());
   EXPECT_EQ(result.exit_code, 1);
-  EXPECT_EQ(result.err,
-            (dir / "stitch-mesh.smobj").string() + ": error: [S910] face 4: no course-in side\n");
+  EXPECT_EQ(result.err, (dir / "stitch-mesh.smobj").string() +
+                            ":7: error: [P083] face 1 has library index 2 (1 entries)\n");
   EXPECT_FALSE(fs::exists(dir / "pieces"));
+  EXPECT_FALSE(fs::exists(dir / "report.json"));
+}
+
+TEST(ScheduleCliTest, WellFormedTwinOfTheMalformedMeshIsScheduled) {
+  const fs::path dir = wearknit::test::make_temp_dir("sched-wellformed");
+  wearknit::test::write_file(dir / "stitch-mesh.smobj",
+                             "L knit -l1 y1 +l1 y1\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                             "f 1 2 3 4\nT 1\n");
+  const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " -q");
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(fs::exists(dir / "pieces" / "piece-1.k"));
 }
 
 TEST(ScheduleCliTest, TrialsAndTimeBudgetExcludeEachOther) {

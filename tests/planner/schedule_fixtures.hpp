@@ -6,8 +6,6 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
-#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -360,30 +358,6 @@ inline StitchMesh random_shape(std::uint32_t seed, int steps = 40) {
     }
   }
   return b.mesh();
-}
-
-// The .smobj text of `mesh` (a face library entry per distinct list of side
-// roles), for tests of the readers and the CLI; the library's own writer
-// belongs to the stitch-mesh stage.
-inline void write_smobj_text(std::ostream& out, const StitchMesh& mesh) {
-  std::map<std::vector<EdgeRole>, int> library;
-  auto name = [](EdgeRole r) {
-    return r == EdgeRole::CourseIn ? "-l" : r == EdgeRole::CourseOut ? "+l" : "y";
-  };
-  for (const StitchFace& f : mesh.faces) {
-    if (library.emplace(f.roles, static_cast<int>(library.size()) + 1).second) {
-      out << "L face" << library.size();
-      for (EdgeRole r : f.roles) out << ' ' << name(r);
-      out << '\n';
-    }
-  }
-  for (const auto& p : mesh.positions) out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-  for (const StitchFace& f : mesh.faces) {
-    out << 'f';
-    for (auto v : f.vertices) out << ' ' << v + 1;
-    out << '\n';
-  }
-  for (const StitchFace& f : mesh.faces) out << "T " << library[f.roles] << '\n';
 }
 
 }  // namespace planner::fixtures

@@ -255,6 +255,25 @@ TEST(SchoolbusTest, StopsShortOfAnIntermediateNeedleThatHoldsALoop) {
                           [](const Transfer& t) { return !t.to_back && t.front == 7; }));
 }
 
+TEST(SchoolbusTest, ARiderThatStopsEarlyWaitsForTheNextRound) {
+  // 12 to the right with +8 ... +5 held: the rider gets off at +4, 8 short
+  // of its needle. It must not ride on from there at racking +8 in the same
+  // round (its loop is on the front bed then): it boards again next round.
+  auto held = [](int n) { return n >= 15 && n <= 18; };
+  const auto plan = schoolbus({{10, 22}}, held);
+  const Replay r = replay({{10, 1}, {15, 1}, {16, 1}, {17, 1}, {18, 1}}, plan);
+  EXPECT_TRUE(r.errors.empty()) << r.errors.front();
+  EXPECT_EQ(r.front, (std::map<int, int>{{15, 1}, {16, 1}, {17, 1}, {18, 1}, {22, 1}}));
+}
+
+TEST(SchoolbusTest, ARiderWithAFreeWayGetsThereInOneRound) {
+  const auto plan = schoolbus({{10, 18}}, [](int n) { return n >= 15 && n <= 17; });
+  EXPECT_EQ(plan.size(), 2u);
+  const Replay r = replay({{10, 1}, {15, 1}, {16, 1}, {17, 1}}, plan);
+  EXPECT_TRUE(r.errors.empty()) << r.errors.front();
+  EXPECT_EQ(r.front, (std::map<int, int>{{15, 1}, {16, 1}, {17, 1}, {18, 1}}));
+}
+
 TEST(SchoolbusTest, RefusesWhenNoIntermediateNeedleIsFree) {
   EXPECT_THROW(schoolbus({{0, 12}}, [](int n) { return n >= 1 && n <= 8; }), std::logic_error);
 }

@@ -1,7 +1,7 @@
 // The needle-bed VM judges the scheduler's knitout: every piece of every
 // synthetic shape, plain and seed, validates with zero errors, and the VM's
 // knit graph has one knitted loop per subdivided face, made by the yarn in
-// the traced order (§7.4).
+// the traced order (§7.4), and no drop lets a bind-off chain unravel (V053).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -49,6 +49,11 @@ TEST(ScheduleVmTest, EveryPieceValidatesAndKnitsItsFacesInTracedOrder) {
         options.observer = &graph;
         bed::validate(program, bed::default_profile(), sink, name, options);
         ASSERT_EQ(sink.error_count(), 0u) << knitout::format(sink.sorted().front());
+        // No bind-off chain is ever let go (V053: a dropped loop that holds
+        // stitches lets the fabric unravel).
+        for (const knitout::Diagnostic& d : sink.diagnostics()) {
+          EXPECT_NE(d.code, "V053") << knitout::format(d);
+        }
         // The knitted loops at the trace's lines, in the yarn's order.
         std::set<std::uint32_t> lines;
         for (const TraceStep& t : piece.trace) lines.insert(static_cast<std::uint32_t>(t.line));
