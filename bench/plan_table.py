@@ -1,0 +1,59 @@
+#!/usr/bin/env python3
+"""Prints one Markdown table row per plan folder from its report.json and
+cuts.json (bench/plan_all.sh, bench/plan_results.sh).
+
+  bench/plan_table.py NAME=DIR[:EXIT:WALL_S] ...
+"""
+import json
+import os
+import sys
+
+STAGES = ["cut", "wearability", "stitch-mesh", "schedule"]
+
+print("| mesh | result | cut s | wearability s | stitch mesh s | schedule s | total s "
+      "| pieces | arcs sewn / laced | schedule cuts | stitches | passes | est. knit time |")
+print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: |")
+for arg in sys.argv[1:]:
+    name, rest = arg.split("=", 1)
+    parts = rest.split(":")
+    folder = parts[0]
+    exit_code = parts[1] if len(parts) > 1 else "?"
+    wall = parts[2] if len(parts) > 2 else ""
+    try:
+        with open(os.path.join(folder, "report.json")) as f:
+            report = json.load(f)
+    except (OSError, ValueError):
+        report = {}
+    plan = report.get("plan", {})
+    times = {}
+    failed = []
+    for stage in plan.get("stages", []):
+        # A re-run after a re-cut is added to its stage's time.
+        base = stage["name"].split(" (")[0]
+        times[base] = times.get(base, 0.0) + stage["time_s"]
+        if stage["exit"] != 0:
+            failed.append(base)
+    if exit_code == "0":
+        result = "ok" + (" (re-cut)" if plan.get("recut") else "")
+    elif exit_code == "124":
+        result = "timeout after %s s" % wall
+    elif failed:
+        result = "failed: " + ", ".join(failed)
+    elif not plan:
+        result = "failed: cut"
+    else:
+        result = "failed (exit %s)" % exit_code
+    s = plan.get("summary", {})
+
+    def t(stage):
+        return "%.1f" % times[stage] if stage in times else "–"
+
+    def g(key, fmt="%d"):
+        return fmt % s[key] if key in s else "–"
+
+    knit = "%.0f min" % (s["estimated_knit_time_s"] / 60) if "estimated_knit_time_s" in s else "–"
+    total = "%.1f" % plan["total_s"] if "total_s" in plan else (wall or "–")
+    arcs = "%d / %d" % (s["sewn"], s["laced"]) if "sewn" in s and s.get("arcs") else "–"
+    print("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+        name, result, t("cut"), t("wearability"), t("stitch-mesh"), t("schedule"), total,
+        g("pieces"), arcs, g("schedule_cuts"), g("stitches"), g("passes"), knit))
