@@ -51,6 +51,9 @@ const std::vector<Verb>& verbs() {
        "[--wear-trials K] [--send URI]",
        "the whole pipeline: cut, wearability beside stitch mesh and schedule, assembly guide",
        run_plan},
+      {"assembly", "assembly DIR [--wearer WEARER.obj]",
+       "the assembly guide of a plan folder: pieces laid flat, seams numbered, sew and lace",
+       run_assembly},
   };
   return kVerbs;
 }

@@ -1,0 +1,52 @@
+// The assembly guide (DESIGN.md, planner stage 6): how to put the knit pieces
+// of a finished plan folder together.
+//
+// Reads DIR/stitch-mesh.smobj (faces, and the cut-arc of every boundary
+// side), DIR/cuts.json (arcs with their "label" sew|lace from the
+// wearability stage, §5, and the scheduler's "schedule_cuts", §7.3),
+// DIR/proxy.obj (where the arcs run), DIR/report.json (the scheduler's seed
+// and trials: the schedule is rebuilt from them to know which needle and row
+// every stitch of every piece has) and writes:
+//   DIR/assembly.svg, DIR/assembly.pdf  the same pages: a cover page with the
+//       legend and the order to close the seams, then every piece laid flat
+//       as it comes off the machine (x = needle, y = row, in the gauge's
+//       proportions), seams numbered at both sides, sew solid blue, lace
+//       dashed red; several pieces per page, large pieces scaled to fit.
+//   DIR/assembly-3d.png  the garment (the stitch mesh) on its wearer from four
+//       sides, seams coloured sew / lace (no wearer when wearer_path is empty).
+// A seam is one stretch of boundary that is joined to another stretch: a part
+// of a cut-arc (split where the scheduler's pieces split it), a scheduler cut
+// (the rows it separated), or a wale seam (rows knit in opposite directions,
+// §7.1). Seams to sew are numbered first (scheduler cuts, wale seams, then the
+// arcs labelled sew), the laced ones after them: they are closed once the
+// garment is on the wearer. docs/assembly.md describes the pages.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace planner {
+
+// What a guide holds, for the verb's summary line and for tests.
+struct AssemblySummary {
+  int pieces = 0;
+  int seams = 0;  // numbered seams (each drawn at its two sides)
+  int sewn = 0;   // seams 1..sewn are sewn, the rest laced
+  int laced = 0;
+  int arcs = 0;  // cut-arcs in cuts.json (every one is listed)
+  int pdf_pages = 0;
+};
+
+// Writes the guide; returns "" or the failure as `PATH: error: [A0xx]
+// message` (codes in docs/diagnostics.md). Nothing is written when the
+// folder cannot be read; every file is written atomically.
+std::string write_assembly_guide(const std::filesystem::path& plan_dir,
+                                 const std::string& wearer_path,
+                                 AssemblySummary* summary = nullptr);
+
+// One page of the guide (1-based, as in the PDF) as a PNG picture, for
+// previews and documentation; `pixels_per_point` 1 gives 842 x 595 pixels.
+std::string write_assembly_page_png(const std::filesystem::path& plan_dir, int page,
+                                    const std::string& png_path, double pixels_per_point = 1.5);
+
+}  // namespace planner

@@ -1,0 +1,318 @@
+// The assembly guide (planner/assembly.hpp, `wearknit assembly`) on plan
+// folders made here by the real stages: cut, wearability, stitch-mesh,
+// schedule.
+#include "planner/assembly.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/test_support.hpp"
+
+namespace wearknit::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr double kScale = 40;  // 3torus-quad is 3 units across: a 120 mm cover
+
+// A copy of `mesh` scaled like `wearknit cut --scale` scales the garment, so
+// the garment can be worn over itself.
+fs::path write_scaled_wearer(const fs::path& mesh, const fs::path& out) {
+  std::ifstream in(mesh);
+  std::ostringstream text;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream words(line.substr(2));
+      double x = 0, y = 0, z = 0;
+      words >> x >> y >> z;
+      text << "v " << x * kScale << ' ' << y * kScale << ' ' << z * kScale << '\n';
+    } else if (line.rfind("f ", 0) == 0) {
+      text << line << '\n';
+    }
+  }
+  write_file(out, text.str());
+  return out;
+}
+
+// cut (and wearability when `wearer` is given), stitch-mesh, schedule.
+fs::path make_plan(const fs::path& mesh, const std::string& name, const fs::path* wearer) {
+  const fs::path dir = make_temp_dir(name);
+  auto step = [&](const std::string& args) {
+    const auto r = run_wearknit(args);
+    EXPECT_EQ(r.exit_code, 0) << args << '\n' << r.err;
+    return r.exit_code == 0;
+  };
+  const std::string d = "'" + dir.string() + "'";
+  if (!step("cut '" + mesh.string() + "' --scale " + std::to_string(kScale) +
+            " -q --no-pictures -o " + d))
+    return {};
+  if (wearer) {
+    // A short budget: the stage labels every arc, sew when the garment still
+    // comes off with the arc closed, and every arc lace (exit 1, W020) when
+    // even the open garment does not come off within the budget.
+    const auto r = run_wearknit("wearability " + d + " --wearer '" + wearer->string() +
+                                "' --trials 1 --max-steps 600 --resolution 24 --seed 2 "
+                                "--threads 2 -q");
+    const bool labelled =
+        r.exit_code == 0 || (r.exit_code == 1 && r.err.find("[W020]") != std::string::npos);
+    EXPECT_TRUE(labelled) << r.err;
+    if (!labelled) return {};
+  }
+  if (!step("stitch-mesh " + d + " -q --no-picture")) return {};
+  if (!step("schedule " + d + " --trials 20 -q")) return {};
+  return dir;
+}
+
+// Every <tag> closed by its </tag> in order (self-closing ones aside): the
+// SVG is well-formed as far as elements go. (Scanned by hand: std::regex
+// recurses per character and overflows the stack on long path data.)
+bool tags_balance(const std::string& svg, std::string* why) {
+  std::vector<std::string> open;
+  for (std::size_t at = svg.find('<'); at != std::string::npos; at = svg.find('<', at + 1)) {
+    const std::size_t end = svg.find('>', at);
+    if (end == std::string::npos) {
+      *why = "unterminated tag";
+      return false;
+    }
+    const std::string tag = svg.substr(at + 1, end - at - 1);
+    if (tag.empty() || tag[0] == '?' || tag[0] == '!') continue;
+    const bool closing = tag[0] == '/';
+    const std::size_t name_end = tag.find_first_of(" \t\n/", closing ? 1 : 0);
+    const std::string name =
+        tag.substr(closing ? 1 : 0, name_end == std::string::npos ? std::string::npos
+                                                                  : name_end - (closing ? 1 : 0));
+    if (closing) {
+      if (open.empty() || open.back() != name) {
+        *why = "unexpected </" + name + ">";
+        return false;
+      }
+      open.pop_back();
+    } else if (tag.back() != '/') {
+      open.push_back(name);
+    }
+  }
+  if (!open.empty()) *why = "<" + open.back() + "> not closed";
+  return open.empty();
+}
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// Page objects of a PDF: `/Type /Page` not followed by `s` (that is /Pages).
+int pdf_pages(const std::string& pdf) {
+  int n = 0;
+  for (std::size_t at = pdf.find("/Type"); at != std::string::npos;
+       at = pdf.find("/Type", at + 1)) {
+    std::size_t k = at + 5;
+    while (k < pdf.size() && (pdf[k] == ' ' || pdf[k] == '\n' || pdf[k] == '\r')) ++k;
+    if (pdf.compare(k, 5, "/Page") == 0 && (k + 5 >= pdf.size() || pdf[k + 5] != 's')) ++n;
+  }
+  return n;
+}
+
+// The seam numbers on the pieces: <text class="seam-label sew|lace" ...>N</text>.
+std::vector<std::pair<std::string, int>> seam_labels(const std::string& svg) {
+  std::vector<std::pair<std::string, int>> found;
+  const std::string open = "<text class=\"seam-label ";
+  for (std::size_t at = svg.find(open); at != std::string::npos; at = svg.find(open, at + 1)) {
+    const std::size_t style_end = svg.find('"', at + open.size());
+    const std::size_t text_start = svg.find('>', at) + 1;
+    const std::size_t text_end = svg.find("</text>", text_start);
+    found.emplace_back(svg.substr(at + open.size(), style_end - at - open.size()),
+                       std::stoi(svg.substr(text_start, text_end - text_start)));
+  }
+  return found;
+}
+
+TEST(AssemblyTest, GuideOfARealPlanFolderShowsEveryPieceAndSeam) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const fs::path mesh = shared / "meshes" / "3torus-quad.obj";
+  const fs::path tmp = make_temp_dir("assembly-wearer");
+  const fs::path wearer = write_scaled_wearer(mesh, tmp / "torus-mm.obj");
+  const fs::path dir = make_plan(mesh, "assembly-plan", &wearer);
+  ASSERT_FALSE(dir.empty());
+
+  const auto r = run_wearknit("assembly '" + dir.string() + "' --wearer '" + wearer.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json cuts = json::parse(read_file(dir / "cuts.json"));
+  const json report = json::parse(read_file(dir / "report.json"));
+  const std::size_t pieces = report.at("schedule").at("pieces").size();
+
+  // Both files, and the same number of pages in each.
+  const std::string pdf = read_file(dir / "assembly.pdf");
+  ASSERT_EQ(pdf.rfind("%PDF-", 0), 0u);
+  EXPECT_NE(pdf.find("%%EOF"), std::string::npos);
+  const std::string svg = read_file(dir / "assembly.svg");
+  ASSERT_EQ(svg.rfind("<?xml", 0), 0u);
+  std::string why;
+  EXPECT_TRUE(tags_balance(svg, &why)) << why;
+  const int pages = count(svg, "<g class=\"page\"");
+  EXPECT_GE(pages, 2);  // the cover page and at least one page of pieces
+  EXPECT_EQ(pdf_pages(pdf), pages);
+  EXPECT_NE(r.out.find(", " + std::to_string(pages) + " pages;"), std::string::npos) << r.out;
+  const std::string png = read_file(dir / "assembly-3d.png");
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+
+  // One caption per piece of report.json.
+  EXPECT_EQ(count(svg, "class=\"piece-caption\""), static_cast<int>(pieces));
+
+  // Every seam number exactly twice on the pieces; sew numbered before lace;
+  // one line per seam in the closing order.
+  std::map<int, std::pair<std::string, int>> seen;
+  for (const auto& [style, number] : seam_labels(svg)) {
+    auto& entry = seen[number];
+    if (entry.second > 0) {
+      EXPECT_EQ(entry.first, style) << "seam " << number;
+    }
+    entry.first = style;
+    ++entry.second;
+  }
+  ASSERT_FALSE(seen.empty());
+  EXPECT_EQ(seen.begin()->first, 1);
+  EXPECT_EQ(seen.rbegin()->first, static_cast<int>(seen.size()));
+  int last_sew = 0;
+  int first_lace = static_cast<int>(seen.size()) + 1;
+  for (const auto& [number, entry] : seen) {
+    EXPECT_EQ(entry.second, 2) << "seam " << number << " is labelled " << entry.second << " times";
+    if (entry.first == "sew") last_sew = std::max(last_sew, number);
+    if (entry.first == "lace") first_lace = std::min(first_lace, number);
+    EXPECT_NE(svg.find(">" + std::to_string(number) + ". " + entry.first + "  piece "),
+              std::string::npos)
+        << "seam " << number << " is missing from the closing order";
+  }
+  EXPECT_LT(last_sew, first_lace);
+
+  // Every arc of cuts.json is listed, with its label; the labels' styles
+  // appear on the pieces.
+  std::set<std::string> labels;
+  for (const json& arc : cuts.at("arcs")) {
+    const std::string id = std::to_string(arc.at("id").get<int>());
+    const std::string arc_label = arc.at("label").get<std::string>();
+    labels.insert(arc_label);
+    EXPECT_TRUE(svg.find("  cut-arc " + id + " ") != std::string::npos ||
+                svg.find("  cut-arc " + id + ",") != std::string::npos ||
+                svg.find(">cut-arc " + id + " (") != std::string::npos)
+        << "cut-arc " << id << " is not in the guide";
+  }
+  for (const std::string& l : labels) {
+    EXPECT_GT(count(svg, "class=\"seam-" + l + "\""), 0) << l;
+    EXPECT_GT(count(svg, "class=\"seam-label " + l + "\""), 0) << l;
+  }
+  for (std::size_t c = 0; c < cuts.value("schedule_cuts", json::array()).size(); ++c)
+    EXPECT_NE(svg.find("scheduling cut " + std::to_string(c + 1) + " "), std::string::npos);
+  EXPECT_EQ(count(svg, "class=\"legend-sew\""), 1);
+  EXPECT_EQ(count(svg, "class=\"legend-lace\""), 1);
+
+  // The library call gives the same figures, without a wearer.
+  planner::AssemblySummary summary;
+  EXPECT_EQ(planner::write_assembly_guide(dir, "", &summary), "");
+  EXPECT_EQ(summary.pieces, static_cast<int>(pieces));
+  EXPECT_EQ(summary.seams, static_cast<int>(seen.size()));
+  EXPECT_EQ(summary.sewn, last_sew);
+  EXPECT_EQ(summary.arcs, static_cast<int>(cuts.at("arcs").size()));
+  EXPECT_EQ(summary.pdf_pages, pages);
+  fs::remove_all(dir);
+  fs::remove_all(tmp);
+}
+
+// The files of the guide and anything else the guide could leave behind.
+std::vector<std::string> guide_files(const fs::path& dir) {
+  std::vector<std::string> found;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.find("assembly") != std::string::npos || name.find(".tmp") != std::string::npos)
+      found.push_back(name);
+  }
+  return found;
+}
+
+TEST(AssemblyTest, MissingOrCorruptFilesGiveAClearErrorAndWriteNothing) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const fs::path dir = make_plan(shared / "meshes" / "3torus-quad.obj", "assembly-bad", nullptr);
+  ASSERT_FALSE(dir.empty());
+  const std::string d = "'" + dir.string() + "'";
+  const std::string cuts = read_file(dir / "cuts.json");
+  const std::string report = read_file(dir / "report.json");
+
+  // Without wearability the arcs carry no label: the guide says so and treats them as sewn.
+  auto r = run_wearknit("assembly " + d + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(read_file(dir / "assembly.svg").find("(no wearability label)"), std::string::npos);
+  for (const char* name : {"assembly.svg", "assembly.pdf", "assembly-3d.png"})
+    fs::remove(dir / name);
+
+  fs::remove(dir / "cuts.json");
+  r = run_wearknit("assembly " + d);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, (dir / "cuts.json").string() +
+                       ": error: [A001] cannot open file (a plan folder needs it for the "
+                       "assembly guide)\n");
+  EXPECT_TRUE(guide_files(dir).empty());
+
+  write_file(dir / "cuts.json", cuts.substr(0, cuts.size() / 2));
+  r = run_wearknit("assembly " + d);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, (dir / "cuts.json").string() + ": error: [A002] not valid JSON\n");
+  EXPECT_TRUE(guide_files(dir).empty());
+
+  write_file(dir / "cuts.json", "{\"arcs\": 3}");
+  r = run_wearknit("assembly " + d);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, (dir / "cuts.json").string() +
+                       ": error: [A002] no \"arcs\" list (write it with wearknit cut)\n");
+  EXPECT_TRUE(guide_files(dir).empty());
+
+  // An arc naming a vertex proxy.obj does not have.
+  json bad = json::parse(cuts);
+  ASSERT_FALSE(bad.at("arcs").empty());
+  bad["arcs"][0]["edges"][0][0] = 999999;
+  write_file(dir / "cuts.json", bad.dump());
+  r = run_wearknit("assembly " + d);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find((dir / "cuts.json").string() + ": error: [A004] arc " +
+                       std::to_string(bad["arcs"][0]["id"].get<int>()) +
+                       ": vertex 999999 is not a vertex of proxy.obj"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(guide_files(dir).empty());
+
+  // A report whose pieces do not match the stitch mesh's schedule.
+  write_file(dir / "cuts.json", cuts);
+  json other = json::parse(report);
+  other["schedule"]["pieces"].push_back(other["schedule"]["pieces"][0]);
+  write_file(dir / "report.json", other.dump());
+  r = run_wearknit("assembly " + d);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find((dir / "report.json").string() + ": error: [A004] lists "),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(guide_files(dir).empty());
+
+  // Put back, it works again.
+  write_file(dir / "report.json", report);
+  r = run_wearknit("assembly " + d + " -q");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(guide_files(dir).size(), 3u);
+
+  r = run_wearknit("assembly '" + (dir / "nowhere").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, (dir / "nowhere").string() + ": error: [A001] not a folder\n");
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace wearknit::test
