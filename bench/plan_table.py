@@ -27,6 +27,33 @@ for arg in sys.argv[1:]:
     plan = report.get("plan", {})
     times = {}
     failed = []
+    partial = ""
+    if not plan:
+        # Killed (timeout) or failed before the merge: the cut's report is in
+        # the folder, the stitch-mesh branch's in its staging folder.
+        try:
+            with open(os.path.join(folder, ".plan-knit", "report.json")) as f:
+                knit = json.load(f)
+        except (OSError, ValueError):
+            knit = {}
+        if "time_s" in report:
+            times["cut"] = report["time_s"].get("total", 0.0)
+        if "stitch_mesh" in knit:
+            times["stitch-mesh"] = knit["stitch_mesh"].get("seconds", 0.0)
+        if "schedule" in knit:
+            times["schedule"] = knit["schedule"].get("time_s", 0.0)
+        s = {}
+        if "stitch_mesh" in knit:
+            s["stitches"] = knit["stitch_mesh"]["faces"]["total"]
+        if "schedule" in knit:
+            pieces = knit["schedule"]["pieces"]
+            s["pieces"] = len(pieces)
+            s["schedule_cuts"] = knit["schedule"]["cuts"]
+            s["passes"] = sum(p["passes"] for p in pieces)
+            s["estimated_knit_time_s"] = sum(p["estimated_knit_time_s"] for p in pieces)
+        if "arcs" in report:
+            partial = " (%d arcs)" % report["arcs"]
+        plan = {"partial_summary": s}
     for stage in plan.get("stages", []):
         # A re-run after a re-cut is added to its stage's time.
         base = stage["name"].split(" (")[0]
@@ -36,14 +63,14 @@ for arg in sys.argv[1:]:
     if exit_code == "0":
         result = "ok" + (" (re-cut)" if plan.get("recut") else "")
     elif exit_code == "124":
-        result = "timeout after %s s" % wall
+        result = "timeout after %s s%s" % (wall, partial)
     elif failed:
         result = "failed: " + ", ".join(failed)
     elif not plan:
         result = "failed: cut"
     else:
         result = "failed (exit %s)" % exit_code
-    s = plan.get("summary", {})
+    s = plan.get("summary", plan.get("partial_summary", {}))
 
     def t(stage):
         return "%.1f" % times[stage] if stage in times else "–"

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "knitout/output_file.hpp"
+#include "planner/assembly.hpp"
 #include "planner/mesh_io.hpp"
 
 namespace wearknit::cli {
@@ -442,6 +443,28 @@ int run_plan_pipeline(const PlanOptions& options, Context& context) {
     // Written before the guide is drawn: the guide reads the merged folder.
     failure = write_text(dir / "cuts.json", cuts.dump(2) + '\n');
     if (failure.empty()) failure = write_text(dir / "report.json", report.dump(2) + '\n');
+  }
+  if (failure.empty() && failed.empty()) {
+    // Stage 6 of DESIGN.md: the pieces with every seam numbered, sew or lace.
+    const std::size_t assembly_id = board.add("assembly", "main");
+    board.begin(assembly_id);
+    planner::AssemblySummary guide;
+    std::string guide_failure;
+    try {
+      guide_failure = planner::write_assembly_guide(dir, wearer_path.string(), &guide);
+    } catch (const std::exception& e) {
+      guide_failure = std::string("internal error: ") + e.what();
+    }
+    std::ostringstream out;
+    if (guide_failure.empty()) {
+      out << "assembly guide: " << guide.pieces << " piece" << (guide.pieces == 1 ? "" : "s")
+          << ", " << guide.seams << " seams (" << guide.sewn << " sew, " << guide.laced
+          << " lace), " << guide.pdf_pages << " pages: assembly.svg, assembly.pdf, "
+          << "assembly-3d.png\n";
+    }
+    board.end(assembly_id, guide_failure.empty() ? kExitOk : kExitInvalid, out.str(),
+              guide_failure.empty() ? "" : guide_failure + "\n");
+    if (!guide_failure.empty()) failed.push_back(assembly_id);
   }
   if (failure.empty() && failed.empty() && !options.send_uri.empty()) {
     const std::size_t send_id = board.add("send", "main");

@@ -102,9 +102,9 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
   plan.wearer = (dir / "input" / "wearer.obj").string();
   plan.garment = (dir / "input" / "garment.obj").string();
   for (const auto& [path, shape, header] :
-       {std::tuple{plan.wearer, make_ellipsoid(25, 1.8, 10),
+       {std::tuple{plan.wearer, make_ellipsoid(25, 1.8, 6),
                    "wearknit demo: the wearer, an ellipsoid, in mm"},
-        std::tuple{plan.garment, make_ellipsoid(26.5, 1.75, 10),
+        std::tuple{plan.garment, make_ellipsoid(26.5, 1.75, 6),
                    "wearknit demo: the garment, the ellipsoid 1.5 mm further out, in mm"}}) {
     const std::string failure = knitout::write_file_atomically(
         path, [&](std::ostream& out) { planner::write_obj(out, shape, header); });
@@ -153,6 +153,7 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
         problems.push_back(dat.string() + ": missing");
     }
     if (pieces == 0) problems.push_back("no pieces");
+    if (!fs::is_regular_file(dir / "assembly.svg")) problems.push_back("no assembly guide");
   }
   for (const std::string& p : problems) context.err << "wearknit demo: " << p << '\n';
   if (!problems.empty()) {
@@ -161,10 +162,12 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
   }
   context.out << "checked: " << pieces << " piece" << (pieces == 1 ? "" : "s")
               << " valid on the needle-bed VM (" << bed::default_profile().name
-              << "), each with its DAT; " << arcs << " cut-arcs, each labelled sew or lace\n"
+              << "), each with its DAT; " << arcs
+              << " cut-arcs, each labelled sew or lace; the assembly guide\n"
               << "open:\n";
   const std::pair<const char*, const char*> to_open[] = {
-      {"assembly.svg", "how to put the pieces together: seams numbered, sew and lace"},
+      {"assembly.pdf", "how to put the pieces together: seams numbered, sew and lace"},
+      {"assembly-3d.png", "the garment on its wearer, seams coloured sew and lace"},
       {"cuts-3d.png", "where the cover is cut"},
       {"wearability.png", "which cuts are sewn (green) and laced (red)"},
       {"stitch-mesh.png", "the stitch mesh"},
