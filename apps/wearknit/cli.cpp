@@ -46,6 +46,12 @@ const std::vector<Verb>& verbs() {
       {"stitch-mesh",
        "stitch-mesh DIR [--gauge N] [--swatch SxR:WxH_MM | --stitch-mm CxW] [--no-picture]",
        "remesh a cut folder into a stitch mesh of course x wale faces (paper §6)", run_stitch_mesh},
+      {"plan",
+       "plan GARMENT --wearer WEARER -o DIR [--seed N] [--pattern plain|seed] [--units U] "
+       "[--scale S | --size-mm L] [--gauge N] [--swatch S | --stitch-mm CxW] [--trials N] "
+       "[--wear-trials K] [--send URI]",
+       "the whole pipeline: cut, wearability beside stitch mesh and schedule, assembly guide",
+       run_plan},
       {"assembly", "assembly DIR [--wearer WEARER.obj] [--page-png N:OUT.png]",
        "the assembly guide of a plan folder: pieces laid flat, seams numbered, sew and lace",
        run_assembly},

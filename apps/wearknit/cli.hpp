@@ -84,6 +84,7 @@ int run_mock_device(const std::vector<std::string>& args, Context& context);
 devices::JobCheckers project_job_checkers();
 int run_cut(const std::vector<std::string>& args, Context& context);
 int run_stitch_mesh(const std::vector<std::string>& args, Context& context);
+int run_plan(const std::vector<std::string>& args, Context& context);
 int run_assembly(const std::vector<std::string>& args, Context& context);
 
 }  // namespace wearknit::cli

@@ -1,94 +1,183 @@
 // wearknit demo: the main job on a built-in input, needing no data file.
 //
-// It generates knitout sheets (plain and seed), reads them back through the
-// parser, writes the canonical form, checks that it reads back to the same
-// program, and runs every instruction through the needle-bed virtual machine
-// on the default machine profile.
-#include <chrono>
+// It builds an egg-like ellipsoid in code as the wearer and a cover for it
+// — the same shape about half a stitch height further out, the way the paper
+// covers its objects (§8) — runs the whole plan on them (cut, wearability
+// beside stitch mesh and schedule, assembly guide), checks the result
+// independently (every piece's knitout through the needle-bed VM, its DAT
+// present, every cut-arc labelled) and says what to open.
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <ostream>
+#include <tuple>
 
 #include "apps/wearknit/cli.hpp"
-#include "knitout/generate.hpp"
+#include "apps/wearknit/plan_pipeline.hpp"
 #include "knitout/output_file.hpp"
 #include "knitout/parser.hpp"
-#include "knitout/writer.hpp"
+#include "planner/mesh_io.hpp"
 #include "simulators/bed/validate.hpp"
 
 namespace wearknit::cli {
 
 namespace po = boost::program_options;
+namespace fs = std::filesystem;
+
+namespace {
+
+// An all-quad ellipsoid: a cube whose faces are split into n x n quads,
+// projected onto the sphere of `radius_mm` and stretched by `z_stretch`
+// along z. Eight valence-3 vertices (the cube's corners), outward normals
+// (counter-clockwise faces seen from outside).
+planner::SurfaceMesh make_ellipsoid(double radius_mm, double z_stretch, int n) {
+  planner::SurfaceMesh mesh;
+  std::map<std::array<int, 3>, int> index;  // cube lattice point -> vertex
+  auto vertex = [&](const std::array<int, 3>& k) {
+    const auto [it, fresh] = index.try_emplace(k, static_cast<int>(mesh.positions.size()));
+    if (fresh) {
+      const planner::Vec3 on_cube(2.0 * k[0] / n - 1, 2.0 * k[1] / n - 1, 2.0 * k[2] / n - 1);
+      mesh.positions.push_back(on_cube.normalized().cwiseProduct(planner::Vec3(1, 1, z_stretch)) *
+                               radius_mm);
+    }
+    return it->second;
+  };
+  for (int a = 0; a < 3; ++a) {
+    const int b = (a + 1) % 3, c = (a + 2) % 3;  // (b, c, a) is right-handed
+    for (int side : {0, n}) {
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          std::vector<int> face;
+          for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
+            std::array<int, 3> k{};
+            k[a] = side;
+            k[b] = i + di;
+            k[c] = j + dj;
+            face.push_back(vertex(k));
+          }
+          if (side == 0) std::reverse(face.begin(), face.end());  // faces -a
+          mesh.faces.push_back(face);
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+}  // namespace
 
 int run_demo(const std::vector<std::string>& args, Context& context) {
-  std::string out_dir;
+  PlanOptions plan;
+  std::string pattern;
   po::options_description options("options");
   options.add_options()("output,o",
-                        po::value<std::string>(&out_dir)->default_value("wearknit-demo"),
-                        "folder to write into");
+                        po::value<std::string>(&plan.dir)->default_value("wearknit-demo"),
+                        "folder to write into")(
+      "seed", po::value<std::uint64_t>(&plan.seed)->default_value(1), "seed of every stage")(
+      "pattern", po::value<std::string>(&pattern)->default_value("plain"),
+      "stitch pattern: plain or seed")("quiet,q", "no progress display");
   po::positional_options_description positional;
   po::variables_map values;
   if (auto code = parse_options(args, *find_verb("demo"), options, positional, values, context)) {
     return *code;
   }
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  if (ec) {
-    context.err << "wearknit demo: cannot create " << out_dir << ": " << ec.message() << '\n';
+  if (pattern != "plain" && pattern != "seed") {
+    context.err << "wearknit demo: --pattern takes plain or seed, not '" << pattern << "'\n";
     return kExitUsage;
   }
-  struct Sample {
-    std::string name;
-    knitout::SheetParams params;
-  };
-  const Sample samples[] = {
-      {"plain-sheet", {40, 30, "3", knitout::SheetPattern::Plain}},
-      {"seed-sheet", {30, 30, "3", knitout::SheetPattern::Seed}},
-  };
-  bool all_ok = true;
-  context.out << "wearknit demo: writing into " << out_dir << "/\n";
-  for (const Sample& sample : samples) {
-    const auto start = std::chrono::steady_clock::now();
-    const std::string generated_path = out_dir + "/" + sample.name + ".k";
-    std::string failure = knitout::write_file_atomically(
-        generated_path, [&](std::ostream& out) { knitout::write_sheet(out, sample.params); });
-    if (!failure.empty()) {
-      context.err << "wearknit demo: " << failure << '\n';
-      return kExitUsage;
-    }
-    knitout::DiagnosticSink sink;
-    knitout::Program program = knitout::parse_file(generated_path, sink);
-    const std::string canonical_path = out_dir + "/" + sample.name + ".fmt.k";
-    failure = knitout::write_file_atomically(
-        canonical_path, [&](std::ostream& out) { knitout::write(out, program); });
-    if (!failure.empty()) {
-      context.err << "wearknit demo: " << failure << '\n';
-      return kExitUsage;
-    }
-    knitout::DiagnosticSink reread_sink;
-    const knitout::Program reread = knitout::parse_file(canonical_path, reread_sink);
-    const bool round_trip = reread == program;
-    knitout::DiagnosticSink vm_sink;
-    const bed::Stats stats =
-        bed::validate(program, bed::default_profile(), vm_sink, generated_path);
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    knitout::print_text(context.err, sink.diagnostics());
-    knitout::print_text(context.err, vm_sink.diagnostics());
-    const bool ok =
-        !sink.has_errors() && !reread_sink.has_errors() && round_trip && !vm_sink.has_errors();
-    all_ok = all_ok && ok;
-    context.out << "  " << sample.name << ": " << program.instructions.size() << " instructions, "
-                << sink.error_count() << " errors, " << sink.warning_count()
-                << " warnings, canonical form " << (round_trip ? "reads back identical" : "DIFFERS")
-                << "; virtual machine (" << bed::default_profile().name
-                << "): " << vm_sink.error_count() << " errors, " << vm_sink.warning_count()
-                << " warnings, " << stats.loops_made << " loops (" << ms << " ms)\n"
-                << "    " << generated_path << "\n    " << canonical_path << '\n';
+  const fs::path dir(plan.dir);
+  std::error_code ec;
+  fs::create_directories(dir / "input", ec);
+  if (ec) {
+    context.err << "wearknit demo: cannot create " << (dir / "input").string() << ": "
+                << ec.message() << '\n';
+    return kExitUsage;
   }
-  context.out << (all_ok ? "demo finished: open the .k files above in a knitout viewer\n"
-                         : "demo FAILED\n");
-  return all_ok ? kExitOk : kExitInvalid;
+  // An egg-like ellipsoid 50 x 50 x 90 mm; the cover about 1.5 mm out from
+  // it (half the default wale height, 2.9 mm). About 4,500 stitches.
+  plan.wearer = (dir / "input" / "wearer.obj").string();
+  plan.garment = (dir / "input" / "garment.obj").string();
+  for (const auto& [path, shape, header] :
+       {std::tuple{plan.wearer, make_ellipsoid(25, 1.8, 6),
+                   "wearknit demo: the wearer, an ellipsoid, in mm"},
+        std::tuple{plan.garment, make_ellipsoid(26.5, 1.75, 6),
+                   "wearknit demo: the garment, the ellipsoid 1.5 mm further out, in mm"}}) {
+    const std::string failure = knitout::write_file_atomically(
+        path, [&](std::ostream& out) { planner::write_obj(out, shape, header); });
+    if (!failure.empty()) {
+      context.err << "wearknit demo: " << failure << '\n';
+      return kExitUsage;
+    }
+  }
+  plan.schedule_args = {"--pattern", pattern};
+  plan.quiet = values.count("quiet") != 0;
+  context.out << "wearknit demo: an ellipsoid and its cover, built in code (" << plan.garment
+              << ", " << plan.wearer << ")\n";
+  const int code = run_plan_pipeline(plan, context);
+  if (code != kExitOk) {
+    context.err << "wearknit demo FAILED\n";
+    return code;
+  }
+
+  // Independent checks of what the plan wrote.
+  std::ifstream report_in(dir / "report.json"), cuts_in(dir / "cuts.json");
+  const nlohmann::json report = nlohmann::json::parse(report_in, nullptr, false);
+  const nlohmann::json cuts = nlohmann::json::parse(cuts_in, nullptr, false);
+  std::vector<std::string> problems;
+  std::size_t pieces = 0, labelled = 0, arcs = 0;
+  if (report.is_discarded() || cuts.is_discarded())
+    problems.push_back("report.json or cuts.json is not JSON");
+  if (problems.empty()) {
+    for (const auto& arc : cuts.value("arcs", nlohmann::json::array())) {
+      ++arcs;
+      const auto label = arc.value("label", nlohmann::json());
+      labelled += label == "sew" || label == "lace";
+    }
+    if (labelled != arcs) problems.push_back("a cut-arc has no sew/lace label");
+    for (const auto& piece : report["schedule"].value("pieces", nlohmann::json::array())) {
+      ++pieces;
+      const fs::path knitout_path = dir / piece.value("knitout", std::string());
+      knitout::DiagnosticSink sink;
+      const knitout::Program program = knitout::parse_file(knitout_path.string(), sink);
+      bed::validate(program, bed::default_profile(), sink, knitout_path.string());
+      if (sink.has_errors()) {
+        problems.push_back(knitout_path.string() + ": the needle-bed VM finds errors");
+        knitout::print_text(context.err, sink.diagnostics());
+      }
+      const fs::path dat = dir / piece.value("dat", std::string());
+      if (!fs::is_regular_file(dat) || fs::file_size(dat) == 0)
+        problems.push_back(dat.string() + ": missing");
+    }
+    if (pieces == 0) problems.push_back("no pieces");
+    if (!fs::is_regular_file(dir / "assembly.svg")) problems.push_back("no assembly guide");
+  }
+  for (const std::string& p : problems) context.err << "wearknit demo: " << p << '\n';
+  if (!problems.empty()) {
+    context.err << "wearknit demo FAILED\n";
+    return kExitInvalid;
+  }
+  context.out << "checked: " << pieces << " piece" << (pieces == 1 ? "" : "s")
+              << " valid on the needle-bed VM (" << bed::default_profile().name
+              << "), each with its DAT; " << arcs
+              << " cut-arcs, each labelled sew or lace; the assembly guide\n"
+              << "open:\n";
+  const std::pair<const char*, const char*> to_open[] = {
+      {"assembly.pdf", "how to put the pieces together: seams numbered, sew and lace"},
+      {"assembly-3d.png", "the garment on its wearer, seams coloured sew and lace"},
+      {"cuts-3d.png", "where the cover is cut"},
+      {"wearability.png", "which cuts are sewn (green) and laced (red)"},
+      {"stitch-mesh.png", "the stitch mesh"},
+      {"pieces/piece-1.svg", "the first piece on the needle bed (also pieces/*.k, *.dat)"},
+      {"report.json", "every stage's figures and timings"}};
+  for (const auto& [name, what] : to_open) {
+    if (fs::exists(dir / name))
+      context.out << "  " << (dir / name).string() << "  " << what << '\n';
+  }
+  return kExitOk;
 }
 
 }  // namespace wearknit::cli

@@ -117,14 +117,5 @@ TEST_F(CliFiles, FmtCheckTellsCanonicalFromNot) {
   EXPECT_EQ(run_wearknit("fmt --check " + path("a.k")).exit_code, 0);
 }
 
-TEST_F(CliFiles, DemoWritesItsFilesAndSucceeds) {
-  const auto result = run_wearknit("demo -o " + path("demo"));
-  EXPECT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_NE(result.out.find("reads back identical"), std::string::npos) << result.out;
-  EXPECT_NE(result.out.find("demo finished"), std::string::npos);
-  EXPECT_TRUE(std::filesystem::exists(path("demo/plain-sheet.k")));
-  EXPECT_TRUE(std::filesystem::exists(path("demo/seed-sheet.fmt.k")));
-}
-
 }  // namespace
 }  // namespace wearknit::cli

@@ -1,0 +1,293 @@
+// `wearknit plan` and `wearknit demo` end to end: the plan folder of
+// DESIGN.md, every piece judged by the needle-bed VM, the failure of a stage,
+// sending the pieces, and the same result on every run although two branches
+// run concurrently.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "knitout/parser.hpp"
+#include "simulators/bed/profile.hpp"
+#include "simulators/bed/validate.hpp"
+#include "tests/test_support.hpp"
+
+namespace wearknit::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::read_file;
+using test::run_wearknit;
+using test::write_file;
+
+// An all-quad ellipsoid as OBJ text: a cube of n x n quads per side projected
+// onto the sphere of `radius`, stretched by `z_stretch` along z; outward
+// faces.
+std::string ellipsoid_obj(double radius, double z_stretch, int n) {
+  std::ostringstream obj;
+  std::map<std::array<int, 3>, int> index;
+  auto vertex = [&](const std::array<int, 3>& k) {
+    const auto [it, fresh] = index.try_emplace(k, static_cast<int>(index.size()) + 1);
+    if (fresh) {
+      double p[3], length = 0;
+      for (int i = 0; i < 3; ++i) {
+        p[i] = 2.0 * k[i] / n - 1;
+        length += p[i] * p[i];
+      }
+      length = std::sqrt(length);
+      obj << "v " << p[0] / length * radius << ' ' << p[1] / length * radius << ' '
+          << p[2] / length * radius * z_stretch << '\n';
+    }
+    return it->second;
+  };
+  std::ostringstream faces;
+  for (int a = 0; a < 3; ++a) {
+    for (int side : {0, n}) {
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          std::vector<int> face;
+          for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
+            std::array<int, 3> k{};
+            k[a] = side;
+            k[(a + 1) % 3] = i + di;
+            k[(a + 2) % 3] = j + dj;
+            face.push_back(vertex(k));
+          }
+          if (side == 0) std::reverse(face.begin(), face.end());
+          faces << 'f';
+          for (int v : face) faces << ' ' << v;
+          faces << '\n';
+        }
+      }
+    }
+  }
+  return obj.str() + faces.str();
+}
+
+json read_json(const fs::path& path) {
+  return json::parse(read_file(path));
+}
+
+// Every piece of the folder's report: VM-valid knitout, a DAT that reads back.
+void expect_valid_pieces(const fs::path& dir) {
+  const json report = read_json(dir / "report.json");
+  const json& pieces = report["schedule"]["pieces"];
+  ASSERT_GE(pieces.size(), 1u);
+  for (const json& piece : pieces) {
+    const fs::path k = dir / piece["knitout"].get<std::string>();
+    knitout::DiagnosticSink sink;
+    const knitout::Program program = knitout::parse_file(k.string(), sink);
+    bed::validate(program, bed::default_profile(), sink, k.string());
+    EXPECT_FALSE(sink.has_errors()) << k;
+    EXPECT_GT(program.instructions.size(), 100u) << k;
+    const fs::path dat = dir / piece["dat"].get<std::string>();
+    const auto info = run_wearknit("dat-info " + dat.string());
+    EXPECT_EQ(info.exit_code, 0) << dat << info.err;
+  }
+}
+
+// The plans are shared by the tests (each costs seconds, more under the
+// sanitizers): plan "a" sends its pieces to a folder, plan "b" the same
+// garment to the loopback machine; the two must give the same files.
+class PlanTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(test::make_temp_dir("wearknit-plan"));
+    // A small egg and its cover 1 mm out: ~800 stitches, 7 cut-arcs.
+    write_file(*dir_ / "wearer.obj", ellipsoid_obj(12, 1.6, 6));
+    write_file(*dir_ / "garment.obj", ellipsoid_obj(13, 1.55, 6));
+    fs::create_directories(*dir_ / "machine");
+    plan_a_ = new test::CommandResult(
+        run_wearknit(plan_command("a", "--send dir:" + (*dir_ / "machine").string())));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+    delete plan_a_;
+    delete plan_b_;
+  }
+  static std::string plan_command(const std::string& out, const std::string& more = "") {
+    return "plan " + (*dir_ / "garment.obj").string() + " --wearer " +
+           (*dir_ / "wearer.obj").string() + " -o " + (*dir_ / out).string() +
+           " --wear-trials 2 --threads 2 " +
+           (more.find("--trials") == std::string::npos ? "--trials 20 " : "") + more;
+  }
+  static const test::CommandResult& plan_b() {
+    if (plan_b_ == nullptr)
+      plan_b_ = new test::CommandResult(run_wearknit(plan_command("b", "-q --send loopback:")));
+    return *plan_b_;
+  }
+  static fs::path* dir_;
+  static test::CommandResult* plan_a_;
+  static test::CommandResult* plan_b_;
+};
+fs::path* PlanTest::dir_ = nullptr;
+test::CommandResult* PlanTest::plan_a_ = nullptr;
+test::CommandResult* PlanTest::plan_b_ = nullptr;
+
+TEST_F(PlanTest, WritesThePlanFolderWithEveryStage) {
+  const auto& result = *plan_a_;
+  ASSERT_EQ(result.exit_code, 0) << result.err << result.out;
+  const fs::path plan = *dir_ / "a";
+  for (const char* name : {"proxy.obj", "cut-mesh.obj", "cuts.json", "labels.json", "report.json",
+                           "wearer.obj", "stitch-mesh.smobj", "wearability.png", "plan.log",
+                           "assembly.svg", "assembly.pdf", "assembly-3d.png"})
+    EXPECT_TRUE(fs::is_regular_file(plan / name)) << name;
+  EXPECT_FALSE(fs::exists(plan / ".plan-wear"));
+  EXPECT_FALSE(fs::exists(plan / ".plan-knit"));
+  expect_valid_pieces(plan);
+
+  // Both branches' results are in the merged files.
+  const json cuts = read_json(plan / "cuts.json");
+  ASSERT_GE(cuts["arcs"].size(), 1u);
+  int sewn = 0, laced = 0;
+  for (const json& arc : cuts["arcs"]) {
+    EXPECT_TRUE(arc["label"] == "sew" || arc["label"] == "lace") << arc.dump();
+    sewn += arc["label"] == "sew";
+    laced += arc["label"] == "lace";
+  }
+  EXPECT_TRUE(cuts.contains("wearability"));
+  EXPECT_TRUE(cuts.contains("schedule_cuts"));
+  const json report = read_json(plan / "report.json");
+  for (const char* member : {"input", "proxy", "time_s", "stitch_mesh", "schedule", "plan"})
+    EXPECT_TRUE(report.contains(member)) << member;
+  std::vector<std::string> names;
+  for (const json& stage : report["plan"]["stages"]) {
+    names.push_back(stage["name"]);
+    EXPECT_EQ(stage["exit"], 0) << stage.dump();
+    EXPECT_GE(stage["time_s"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"cut", "wearability", "stitch-mesh", "schedule",
+                                             "assembly", "send"}));
+  const json& summary = report["plan"]["summary"];
+  EXPECT_EQ(summary["sewn"], sewn);
+  EXPECT_EQ(summary["laced"], laced);
+  EXPECT_EQ(summary["pieces"], report["schedule"]["pieces"].size());
+  EXPECT_EQ(summary["stitches"], report["stitch_mesh"]["faces"]["total"]);
+  EXPECT_GT(summary["estimated_knit_time_s"].get<double>(), 0.0);
+  EXPECT_GT(report["plan"]["total_s"].get<double>(), 0.0);
+  // Not a terminal: no progress line, only the summary, naming the plan
+  // folder (not a staging folder).
+  EXPECT_EQ(result.out.find('\r'), std::string::npos);
+  EXPECT_NE(result.out.find("  wearability "), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("  total "), std::string::npos) << result.out;
+  EXPECT_EQ(result.out.find(".plan-"), std::string::npos) << result.out;
+}
+
+TEST_F(PlanTest, SendsEveryPieceToAFolder) {
+  ASSERT_EQ(plan_a_->exit_code, 0) << plan_a_->err;
+  const json report = read_json(*dir_ / "a/report.json");
+  const json& pieces = report["schedule"]["pieces"];
+  ASSERT_EQ(report["plan"]["sent"].size(), pieces.size());
+  for (const json& piece : pieces) {
+    const std::string dat = piece["dat"];
+    const fs::path sent = *dir_ / "machine" / fs::path(dat).filename();
+    ASSERT_TRUE(fs::is_regular_file(sent)) << sent;
+    EXPECT_EQ(read_file(sent), read_file(*dir_ / "a" / dat));
+  }
+}
+
+TEST_F(PlanTest, SendsToTheLoopbackMachine) {
+  ASSERT_EQ(plan_b().exit_code, 0) << plan_b().err;
+  EXPECT_EQ(plan_b().out, "");  // --quiet
+  const json report = read_json(*dir_ / "b/report.json");
+  ASSERT_GE(report["plan"]["sent"].size(), 1u);
+  for (const json& sent : report["plan"]["sent"]) {
+    EXPECT_EQ(sent["exit"], 0);
+    EXPECT_NE(sent["message"].get<std::string>().find("rows knitted (device confirmed)"),
+              std::string::npos)
+        << sent.dump();
+  }
+}
+
+// The two branches run concurrently; the merged result must not depend on
+// which finishes first.
+TEST_F(PlanTest, TwoRunsGiveTheSameFiles) {
+  ASSERT_EQ(plan_a_->exit_code, 0);
+  ASSERT_EQ(plan_b().exit_code, 0);
+  const json a = read_json(*dir_ / "a/cuts.json"), b = read_json(*dir_ / "b/cuts.json");
+  EXPECT_EQ(a, b);
+  for (const char* name : {"cut-mesh.obj", "stitch-mesh.smobj"})
+    EXPECT_EQ(read_file(*dir_ / "a" / name), read_file(*dir_ / "b" / name)) << name;
+  const json pieces = read_json(*dir_ / "a/report.json")["schedule"]["pieces"];
+  ASSERT_GE(pieces.size(), 1u);
+  for (const json& piece : pieces) {
+    for (const char* kind : {"knitout", "dat"}) {
+      const std::string name = piece[kind];
+      EXPECT_EQ(read_file(*dir_ / "a" / name), read_file(*dir_ / "b" / name)) << name;
+    }
+  }
+}
+
+TEST_F(PlanTest, AnUnreadableWearerFailsAtTheCut) {
+  const auto result =
+      run_wearknit("plan " + (*dir_ / "garment.obj").string() + " --wearer " +
+                   (*dir_ / "absent.obj").string() + " -o " + (*dir_ / "c").string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.err.find("wearknit plan: the cut stage failed (exit 1):\n  " +
+                            (*dir_ / "absent.obj").string() + ": error: [P001]"),
+            std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("wearknit plan: no stage finished"), std::string::npos);
+  EXPECT_FALSE(fs::exists(*dir_ / "c/cuts.json"));
+}
+
+TEST_F(PlanTest, AFailedScheduleKeepsTheEarlierStages) {
+  const auto result = run_wearknit(plan_command("d", "--trials 0 --no-pictures"));
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.err.find("wearknit plan: the schedule stage failed (exit 2):\n"
+                            "  wearknit schedule: --trials must be at least 1\n"),
+            std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("the outputs of cut, wearability, stitch-mesh are in"),
+            std::string::npos)
+      << result.err;
+  const fs::path plan = *dir_ / "d";
+  EXPECT_TRUE(fs::is_regular_file(plan / "cut-mesh.obj"));
+  EXPECT_TRUE(fs::is_regular_file(plan / "stitch-mesh.smobj"));
+  EXPECT_FALSE(fs::exists(plan / "pieces"));
+  EXPECT_FALSE(fs::exists(plan / "assembly.svg"));
+  EXPECT_FALSE(fs::exists(plan / ".plan-knit"));
+  const json cuts = read_json(plan / "cuts.json");
+  for (const json& arc : cuts["arcs"]) EXPECT_TRUE(arc["label"].is_string()) << arc.dump();
+  const json report = read_json(plan / "report.json");
+  EXPECT_TRUE(report.contains("stitch_mesh"));
+  EXPECT_FALSE(report.contains("schedule"));
+  EXPECT_EQ(report["plan"]["stages"].back()["name"], "schedule");
+  EXPECT_EQ(report["plan"]["stages"].back()["exit"], 2);
+}
+
+TEST_F(PlanTest, RejectsBadOptionsBeforeAnyStage) {
+  auto result = run_wearknit(plan_command("e", "--pattern lace"));
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.err, "wearknit plan: --pattern takes plain or seed, not 'lace'\n");
+  result = run_wearknit(plan_command("e", "--size-mm 50 --scale 2"));
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.err, "wearknit plan: give --scale or --size-mm, not both\n");
+  EXPECT_FALSE(fs::exists(*dir_ / "e"));
+}
+
+TEST(DemoTest, RunsThePipelineOnItsOwnShape) {
+  const fs::path dir = test::make_temp_dir("wearknit-demo");
+  const auto result = run_wearknit("demo -q -o " + (dir / "demo").string());
+  ASSERT_EQ(result.exit_code, 0) << result.err << result.out;
+  EXPECT_NE(result.out.find("valid on the needle-bed VM"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find((dir / "demo/report.json").string()), std::string::npos);
+  EXPECT_TRUE(fs::is_regular_file(dir / "demo/input/garment.obj"));
+  EXPECT_TRUE(fs::is_regular_file(dir / "demo/assembly.svg"));
+  expect_valid_pieces(dir / "demo");
+  const json cuts = read_json(dir / "demo/cuts.json");
+  ASSERT_GE(cuts["arcs"].size(), 1u);
+  for (const json& arc : cuts["arcs"])
+    EXPECT_TRUE(arc["label"] == "sew" || arc["label"] == "lace") << arc.dump();
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace wearknit::cli
