@@ -25,7 +25,6 @@
 #include "knitout/output_file.hpp"
 #include "planner/piece_layout.hpp"
 #include "planner/schedule.hpp"
-#include "planner/smobj_read.hpp"
 #include "planner/stitch_mesh.hpp"
 #include "planner/union_find.hpp"
 #include "planner/wearability_io.hpp"
@@ -161,25 +160,23 @@ void load(Model& m, const fs::path& dir) {
   const json report = read_json_file(report_path);
 
   // The stitch mesh as the scheduler read it, and the cut-arc of every
-  // boundary side (kept in `# arc` lines that only parse_smobj reads).
+  // boundary side (the `# arc` lines), read with the scheduler's reader.
   {
     std::ifstream probe(smobj_path);
     if (!probe) fail(smobj_path, "A001", "cannot open file (run wearknit stitch-mesh first)");
   }
-  knitout::DiagnosticSink sink;
-  m.mesh = read_smobj_file(smobj_path.string(), sink);
-  if (sink.has_errors()) fail(smobj_path, "A003", "unreadable: " + first_error(sink));
   std::unordered_map<std::uint64_t, int> arc_of_key;
   {
     std::ifstream in(smobj_path);
-    knitout::DiagnosticSink arc_sink;
-    const auto with_arcs = parse_smobj(in, smobj_path.string(), arc_sink);
-    if (!with_arcs) fail(smobj_path, "A003", "unreadable: " + first_error(arc_sink));
-    // The stitch size (`# wearknit` line) only this reader keeps; without it,
-    // the paper's swatch (§8.1: 40 x 40 stitches measure 42 x 115 mm).
-    m.mesh.course_mm = with_arcs->course_mm > 0 ? with_arcs->course_mm : 1.05;
-    m.mesh.wale_mm = with_arcs->wale_mm > 0 ? with_arcs->wale_mm : 2.875;
-    for (const StitchFace& f : with_arcs->faces) {
+    knitout::DiagnosticSink sink;
+    auto read = parse_smobj(in, smobj_path.string(), sink);
+    if (!read || sink.has_errors()) fail(smobj_path, "A003", "unreadable: " + first_error(sink));
+    m.mesh = std::move(*read);
+    // Without a `# wearknit` stitch-size line, the paper's swatch (§8.1:
+    // 40 x 40 stitches measure 42 x 115 mm).
+    if (!(m.mesh.course_mm > 0)) m.mesh.course_mm = 1.05;
+    if (!(m.mesh.wale_mm > 0)) m.mesh.wale_mm = 2.875;
+    for (const StitchFace& f : m.mesh.faces) {
       for (std::size_t i = 0; i < f.vertices.size() && i < f.arcs.size(); ++i) {
         if (f.arcs[i] != kNoArc)
           arc_of_key[side_key(f.vertices[i], f.vertices[(i + 1) % f.vertices.size()])] = f.arcs[i];
