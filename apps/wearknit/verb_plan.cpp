@@ -61,7 +61,8 @@ int run_plan(const std::vector<std::string>& args, Context& context) {
       {"runs", "runs", "wearability: eliminations with different arc orders (default 1)"},
       {"max-steps", "max-steps", "wearability: steps before a trial fails (default 3000)"},
       {"resolution", "resolution", "wearability: distance-field cells along the wearer's side"},
-      {"recut-limit", "recut-limit", "wearability: re-cuts with other seeds when not wearable (default 3)"}};
+      {"recut-limit", "recut-limit",
+       "wearability: re-cuts with other seeds when not wearable (default 3)"}};
   static const std::vector<Passed> kSchedule = {
       {"trials", "trials", "schedule: random knitting orders to try (default 100)"},
       {"time-budget", "time-budget", "schedule: seconds for orders instead of --trials"}};

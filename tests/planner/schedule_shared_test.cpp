@@ -10,11 +10,7 @@
 // Under the sanitizers only quad-dominant inputs run (the others skip,
 // saying so): remeshing triangle input for the cut is too slow there.
 //
-// A mesh whose stitch mesh is not produced is a failure, except the ones
-// listed in kStitchMeshFailures (the stitch-mesh stage's open issue 8):
-// those are skipped with the stage's first problem in the message, and a
-// listed mesh that does get a stitch mesh is scheduled and checked like
-// every other (the test then says the entry can go).
+// A mesh whose stitch mesh is not produced is a failure.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -43,11 +39,6 @@ namespace planner {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Meshes the stitch-mesh stage does not turn into a stitch mesh yet
-// (docs/stitch-mesh.md, P086).
-const std::set<std::string> kStitchMeshFailures = {"anchor", "horse-quad", "man",
-                                                   "rockerarm-10k"};
 
 // Every .obj of ../shared/meshes, by name; empty without the shared folder
 // (each test then skips visibly through WEARKNIT_REQUIRE_SHARED).
@@ -114,13 +105,7 @@ TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOr
   const LabelledDisc disc = labelled_disc(cut);
   ASSERT_TRUE(check_disc(disc).empty()) << name << ": the cut is not a disc";
   const AnisoRemeshResult stitched = remesh_anisotropic(disc, AnisoRemeshParams{});
-  const bool known_failure = kStitchMeshFailures.count(name) != 0;
   if (!stitched.problems.empty()) {
-    if (known_failure) {
-      GTEST_SKIP() << name << ": no stitch mesh to schedule: the stitch-mesh stage reports "
-                   << stitched.problems.size() << " problem(s), first: "
-                   << stitched.problems.front();
-    }
     FAIL() << name << ": the stitch-mesh stage reports " << stitched.problems.size()
            << " problem(s), first: " << stitched.problems.front();
   }
@@ -188,9 +173,6 @@ TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOr
     EXPECT_FALSE(dat->empty());
   }
   RecordProperty("v053_drops", drops);
-  EXPECT_FALSE(known_failure) << name
-                              << " now has a stitch mesh and schedules: remove it from "
-                                 "kStitchMeshFailures";
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, ScheduleSharedTest, ::testing::ValuesIn(shared_meshes()),
