@@ -75,16 +75,6 @@ json read_json(const fs::path& path) {
   return json::parse(read_file(path));
 }
 
-// The plans draw the assembly guide, whose text goes through fontconfig;
-// under the sanitizers the wearknit processes get its leaks suppressed
-// (lsan-fontconfig.supp), keeping whatever LSAN_OPTIONS already says.
-const bool kLeakSuppressions = [] {
-  std::string options = std::getenv("LSAN_OPTIONS") ? std::getenv("LSAN_OPTIONS") : "";
-  options += std::string(options.empty() ? "" : ":") + "suppressions=" + WEARKNIT_SOURCE_DIR +
-             "/tests/apps/lsan-fontconfig.supp";
-  return setenv("LSAN_OPTIONS", options.c_str(), 1) == 0;
-}();
-
 // Every piece of the folder's report: VM-valid knitout, a DAT that reads back.
 void expect_valid_pieces(const fs::path& dir) {
   const json report = read_json(dir / "report.json");
