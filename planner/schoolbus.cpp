@@ -40,30 +40,59 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
       if (riders[i].at != riders[i].to) aboard.push_back(i);
     }
     if (aboard.empty()) break;
-    for (std::size_t i : aboard) plan.push_back({0, true, riders[i].at, riders[i].at});
     // Needles riders get off at this round: their destinations when within
     // reach, else the furthest needle within reach that is empty (no loop
-    // that stays, no rider that arrived) and that nobody else gets off at.
-    std::set<int> reserved;
-    for (std::size_t i : aboard) {
-      if (std::abs(riders[i].to - riders[i].at) <= max_racking) reserved.insert(riders[i].to);
-    }
+    // that stays, no rider that arrived or waits) and that nobody else gets
+    // off at. A rider with no such needle waits on its own needle this
+    // round; the needles of waiting riders are then taken, so the choice is
+    // made again until nobody else has to wait.
     std::map<std::size_t, int> stop_step;
-    for (std::size_t i : aboard) {
-      const int left = riders[i].to - riders[i].at;
-      if (std::abs(left) <= max_racking) continue;
-      const int sign = left > 0 ? 1 : -1;
-      for (int step = max_racking; step >= 1; --step) {
-        const int stop = riders[i].at + sign * step;
-        if (occupied(stop) || arrived.count(stop) != 0 || reserved.count(stop) != 0) continue;
-        stop_step[i] = step;
-        reserved.insert(stop);
+    std::set<int> waiting_at;
+    while (true) {
+      std::set<int> reserved = waiting_at;
+      for (std::size_t i : aboard) {
+        if (std::abs(riders[i].to - riders[i].at) <= max_racking) reserved.insert(riders[i].to);
+      }
+      stop_step.clear();
+      std::vector<std::size_t> moving;
+      bool more_wait = false;
+      for (std::size_t i : aboard) {
+        if (waiting_at.count(riders[i].at) != 0) continue;
+        const int left = riders[i].to - riders[i].at;
+        if (std::abs(left) <= max_racking) {
+          // Its destination still holds a rider that waits: it waits too.
+          if (waiting_at.count(riders[i].to) != 0) {
+            waiting_at.insert(riders[i].at);
+            more_wait = true;
+          } else {
+            moving.push_back(i);
+          }
+          continue;
+        }
+        const int sign = left > 0 ? 1 : -1;
+        for (int step = max_racking; step >= 1; --step) {
+          const int stop = riders[i].at + sign * step;
+          if (occupied(stop) || arrived.count(stop) != 0 || reserved.count(stop) != 0) continue;
+          stop_step[i] = step;
+          reserved.insert(stop);
+          break;
+        }
+        if (stop_step.count(i) != 0) {
+          moving.push_back(i);
+        } else {
+          waiting_at.insert(riders[i].at);
+          more_wait = true;
+        }
+      }
+      if (!more_wait) {
+        aboard = std::move(moving);
         break;
       }
-      if (stop_step.count(i) == 0)
-        throw std::logic_error("schoolbus: no free needle within reach of f" +
-                               std::to_string(riders[i].at));
     }
+    if (aboard.empty())
+      throw std::logic_error("schoolbus: no free needle within reach of f" +
+                             std::to_string(*waiting_at.begin()));
+    for (std::size_t i : aboard) plan.push_back({0, true, riders[i].at, riders[i].at});
     std::map<int, int> landing;  // front needle -> destination of who got off there
     // A rider gets off once per round: one that stopped on its way (at a
     // positive racking) must not ride on from its stop later in the round.

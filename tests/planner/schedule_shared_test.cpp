@@ -10,8 +10,8 @@
 // Under the sanitizers only quad-dominant inputs run (the others skip,
 // saying so): remeshing triangle input for the cut is too slow there.
 //
-// A mesh whose stitch mesh is not produced is a failure. Two meshes whose
-// stitch meshes the scheduler cannot knit yet are listed in
+// A mesh whose stitch mesh is not produced is a failure. A mesh whose
+// stitch mesh the scheduler cannot knit yet is listed in
 // kScheduleFailures with what goes wrong; they are skipped with that
 // reason (docs/scheduling.md, "Open problems").
 #include <gtest/gtest.h>
@@ -44,11 +44,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Stitch meshes (since the stitch stage's row placement by height) that the
-// scheduler does not knit correctly yet, with the failure it shows.
+// Stitch meshes that the scheduler does not knit correctly yet, with the
+// failure they show.
 const std::map<std::string, std::string> kScheduleFailures = {
     {"anchor", "piece 33 of 200 stacks 5 loops on one needle (V037)"},
-    {"armadillo", "the schoolbus finds no free needle within reach of a loop (logic_error)"},
 };
 
 // Every .obj of ../shared/meshes, by name; empty without the shared folder

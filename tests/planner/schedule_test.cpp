@@ -274,6 +274,26 @@ TEST(SchoolbusTest, ARiderWithAFreeWayGetsThereInOneRound) {
   EXPECT_EQ(r.front, (std::map<int, int>{{15, 1}, {16, 1}, {17, 1}, {18, 1}}));
 }
 
+TEST(SchoolbusTest, ARiderWhoseReachIsTakenThisRoundWaitsOnItsNeedle) {
+  // 20 -> 0 with 13..19 held: its only free stop within reach, 12, is taken
+  // by the rider 6 -> 30, which gets off there first. The first rider waits
+  // on its needle for a round (it used to stop the schedule) and then both
+  // pass each other.
+  auto held = [](int n) { return n >= 13 && n <= 19; };
+  const auto plan = schoolbus({{20, 0}, {6, 30}}, held);
+  std::map<int, int> start = {{20, 1}, {6, 1}};
+  for (int n = 13; n <= 19; ++n) start[n] = 1;
+  std::map<int, int> want = {{0, 1}, {30, 1}};
+  for (int n = 13; n <= 19; ++n) want[n] = 1;
+  const Replay r = replay(start, plan);
+  EXPECT_TRUE(r.errors.empty()) << r.errors.front();
+  EXPECT_EQ(r.front, want);
+  // In the first round only the rider from 6 boards.
+  ASSERT_FALSE(plan.empty());
+  EXPECT_EQ(plan.front().front, 6);
+  EXPECT_TRUE(plan.front().to_back);
+}
+
 TEST(SchoolbusTest, RefusesWhenNoIntermediateNeedleIsFree) {
   EXPECT_THROW(schoolbus({{0, 12}}, [](int n) { return n >= 1 && n <= 8; }), std::logic_error);
 }
