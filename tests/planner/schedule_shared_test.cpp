@@ -37,6 +37,7 @@
 #include "planner/stitch_mesh_remesh.hpp"
 #include "simulators/bed/knit_graph.hpp"
 #include "simulators/bed/validate.hpp"
+#include "tests/planner/knitted_lines.hpp"
 #include "tests/test_support.hpp"
 
 namespace planner {
@@ -166,13 +167,7 @@ TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOr
     // One knitted loop per subdivided face, made where the trace says, in
     // the yarn's order.
     ASSERT_EQ(piece.trace.size(), subdivided_faces(*mesh, s, s.pieces[p]));
-    std::set<std::uint32_t> lines;
-    for (const TraceStep& t : piece.trace) lines.insert(static_cast<std::uint32_t>(t.line));
-    std::vector<std::uint32_t> made;
-    for (const auto& loop : graph.loops()) {
-      if (loop.kind == bed::LoopKind::Knit && lines.count(loop.line) != 0)
-        made.push_back(loop.line);
-    }
+    const std::vector<std::uint32_t> made = testing::knitted_trace_lines(graph, piece.trace);
     ASSERT_EQ(made.size(), piece.trace.size());
     for (std::size_t i = 0; i < made.size(); ++i) {
       ASSERT_EQ(made[i], static_cast<std::uint32_t>(piece.trace[i].line)) << "loop " << i;

@@ -11,6 +11,7 @@
 #include "planner/knitout_emit.hpp"
 #include "simulators/bed/knit_graph.hpp"
 #include "simulators/bed/validate.hpp"
+#include "tests/planner/knitted_lines.hpp"
 #include "tests/planner/schedule_fixtures.hpp"
 
 namespace planner {
@@ -55,13 +56,7 @@ TEST(ScheduleVmTest, EveryPieceValidatesAndKnitsItsFacesInTracedOrder) {
           EXPECT_NE(d.code, "V053") << knitout::format(d);
         }
         // The knitted loops at the trace's lines, in the yarn's order.
-        std::set<std::uint32_t> lines;
-        for (const TraceStep& t : piece.trace) lines.insert(static_cast<std::uint32_t>(t.line));
-        std::vector<std::uint32_t> made;
-        for (const auto& loop : graph.loops()) {
-          if (loop.kind == bed::LoopKind::Knit && lines.count(loop.line) != 0)
-            made.push_back(loop.line);
-        }
+        const std::vector<std::uint32_t> made = testing::knitted_trace_lines(graph, piece.trace);
         ASSERT_EQ(made.size(), piece.trace.size());
         for (std::size_t i = 0; i < made.size(); ++i) {
           EXPECT_EQ(made[i], static_cast<std::uint32_t>(piece.trace[i].line));
