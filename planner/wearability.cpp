@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -218,6 +219,46 @@ std::vector<int> weld_vertices(std::vector<Vec3>& vertices, std::vector<std::vec
   return map;
 }
 
+CoverMesh subdivided(const CoverMesh& mesh) {
+  CoverMesh result;
+  result.vertices = mesh.vertices;
+  std::unordered_map<std::uint64_t, int> midpoint;
+  auto middle = [&](int a, int b) {
+    const auto [it, inserted] =
+        midpoint.emplace(edge_key(a, b), static_cast<int>(result.vertices.size()));
+    if (inserted) result.vertices.push_back(0.5 * (mesh.vertices[a] + mesh.vertices[b]));
+    return it->second;
+  };
+  for (const auto& face : mesh.faces) {
+    const std::size_t n = face.size();
+    Vec3 centre = Vec3::Zero();
+    for (int v : face) centre += mesh.vertices[v];
+    const int c = static_cast<int>(result.vertices.size());
+    result.vertices.push_back(centre / static_cast<double>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      const int previous = face[(i + n - 1) % n], here = face[i], next = face[(i + 1) % n];
+      result.faces.push_back({here, middle(here, next), c, middle(previous, here)});
+    }
+  }
+  for (const auto& arc : mesh.arcs) {
+    CoverArc half{arc.name, {}};
+    for (const auto& [u, v] : arc.edges) {
+      const int m = middle(u, v);
+      half.edges.push_back({u, m});
+      half.edges.push_back({m, v});
+    }
+    result.arcs.push_back(std::move(half));
+  }
+  return result;
+}
+
+CoverMesh refined_for_cloth(CoverMesh mesh, int min_vertices) {
+  for (int step = 0; step < 4 && static_cast<int>(mesh.vertices.size()) < min_vertices; ++step) {
+    mesh = subdivided(mesh);
+  }
+  return mesh;
+}
+
 cloth::ClothMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
                            std::vector<int>* source) {
   std::unordered_map<std::uint64_t, bool> cut;
@@ -381,23 +422,79 @@ EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceFi
   result.projections += result.initial.projections;
   if (result.initial.wearable) {
     result.order = random_order(arcs, derive(run_seed, 1));
-    for (int position = 0; position < arcs; ++position) {
-      const int arc = result.order[position];
-      open[arc] = false;  // tentatively sewn
-      ArcResult& outcome = result.arcs[arc];
-      outcome.position = position;
-      outcome.test = test_wearability(garment, open, wearer, params,
-                                      derive(run_seed, 2, static_cast<std::uint64_t>(arc)));
-      result.steps += outcome.test.steps;
-      result.projections += outcome.test.projections;
-      if (outcome.test.wearable) {
-        outcome.label = Label::Sew;
-        ++report.sewn;
-      } else {
-        open[arc] = true;  // reinserted: laced
+    int position = 0;
+    // Runs one test of the garment with the arcs of order[first, last)
+    // closed tentatively; a group's seed differs from any single arc's.
+    auto test_closed = [&](int first, int last) {
+      for (int p = first; p < last; ++p) open[result.order[p]] = false;
+      const std::uint64_t seed =
+          last - first == 1 ? derive(run_seed, 2, static_cast<std::uint64_t>(result.order[first]))
+                            : derive(run_seed, 3,
+                                     (static_cast<std::uint64_t>(first) << 32) |
+                                         static_cast<std::uint64_t>(last));
+      TestResult test = test_wearability(garment, open, wearer, params, seed);
+      test.group = last - first;
+      result.steps += test.steps;
+      result.projections += test.projections;
+      ++result.tests;
+      if (!test.wearable) {
+        for (int p = first; p < last; ++p) open[result.order[p]] = true;
       }
-      report.tested = position + 1;
+      return test;
+    };
+    auto decide = [&](int first, int last, const TestResult& test) {
+      for (int p = first; p < last; ++p) {
+        ArcResult& outcome = result.arcs[result.order[p]];
+        outcome.position = p;
+        outcome.test = test;
+        if (test.wearable) {
+          outcome.label = Label::Sew;
+          ++report.sewn;
+        }
+      }
+      position = std::max(position, last);
+      report.tested = position;
       if (progress) progress(report);
+    };
+    // Settles order[first, last); `failed` (may be null) is a test already
+    // run of exactly the configuration with all of them closed, which did
+    // not come off. Returns whether any of them was laced.
+    std::function<bool(int, int, const TestResult*)> settle = [&](int first, int last,
+                                                                  const TestResult* failed) {
+      TestResult test;
+      if (failed == nullptr) {
+        test = test_closed(first, last);
+        if (test.wearable) {
+          decide(first, last, test);
+          return false;
+        }
+        failed = &test;
+      }
+      if (last - first == 1) {
+        decide(first, last, *failed);
+        return true;
+      }
+      const int middle = first + (last - first) / 2;
+      if (settle(first, middle, nullptr)) {
+        settle(middle, last, nullptr);
+        return true;
+      }
+      // The first half is all sewn, so closing the second half now gives
+      // exactly the configuration that failed: split it without a test.
+      settle(middle, last, failed);
+      return true;
+    };
+    // §5 takes the arcs one at a time. With group testing (see
+    // WearabilityParams::group_testing) a run of arcs is closed together
+    // while the garment keeps coming off, the run doubling after each
+    // success and halving after a run that laced an arc.
+    int group = 1;
+    while (position < arcs) {
+      const int last = std::min(arcs, position + group);
+      const bool laced = settle(position, last, nullptr);
+      if (params.group_testing) {
+        group = laced ? std::max(1, group / 2) : std::min(group * 2, std::max(params.max_group, 1));
+      }
     }
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -21,6 +21,14 @@
 // wearable, reopened (label lace) otherwise. Repeating it over R random
 // orders gives each arc's probability of being laced (Fig. 18).
 //
+// Group testing (on by default, WearabilityParams::group_testing) decides
+// the same order with fewer tests: the next run of arcs in the order is
+// closed together; when the garment still comes off they are all sewn, else
+// the run is halved and each half settled the same way, down to single arcs.
+// When sewing more never makes a garment easier to strip (closing a seam
+// only removes ways off), this gives exactly the labels of the one-at-a-time
+// elimination of the same order; docs/wearability.md says why it is used.
+//
 // Deterministic for a given seed, whatever the thread count: trials run in
 // parallel, but the outcome of an arc is decided by the lowest-numbered
 // successful trial, and only trials up to it are recorded.
@@ -70,6 +78,18 @@ int nearest_vertex(const CoverMesh& mesh, const Vec3& point);
 std::vector<int> weld_vertices(std::vector<Vec3>& vertices, std::vector<std::vector<int>>& faces,
                                double tolerance);
 
+// One step of polygon subdivision: every n-gon becomes n quads through its
+// centroid and its edges' midpoints (new points on the old faces: the shape
+// does not change), and every arc edge becomes the two edges of its halves.
+// Arc indices and names are kept.
+CoverMesh subdivided(const CoverMesh& mesh);
+
+// The mesh subdivided until it has at least `min_vertices` vertices (at most
+// 4 steps, i.e. up to 256 times the faces). A garment of a few dozen large
+// faces cannot bend around its wearer in the simulation; its sew/lace
+// answers are per arc and do not depend on the resolution.
+CoverMesh refined_for_cloth(CoverMesh mesh, int min_vertices);
+
 // The garment with the arcs where open[arc] is true split open: every vertex
 // gets one copy per group of its faces that stays connected across closed
 // edges. `source` (optional) receives the CoverMesh vertex of each copy.
@@ -83,6 +103,11 @@ struct WearabilityParams {
   int trials = 4;
   // Threads running trials concurrently (0 = all hardware threads).
   int threads = 0;
+  // Settle runs of arcs with one test while the garment keeps coming off
+  // (see the top of this file); false = the paper's one test per arc.
+  bool group_testing = true;
+  // The longest run closed in one test.
+  int max_group = 32;
   std::uint64_t seed = 1;
 };
 
@@ -95,6 +120,7 @@ struct TrialOutcome {
 
 struct TestResult {
   bool wearable = false;
+  int group = 1;                     // arcs closed tentatively for this test (the elimination's)
   std::vector<TrialOutcome> trials;  // up to and including the first success
   std::uint64_t steps = 0;           // simulated, over every trial started
   std::uint64_t projections = 0;
@@ -106,13 +132,19 @@ const char* to_string(Label label);
 struct ArcResult {
   Label label = Label::Lace;
   int position = -1;  // when it was tested (0 = first); -1 when never tested
-  TestResult test;    // of the garment with this arc closed
+  // The test that decided it, of the garment with this arc closed. With
+  // test.group > 1 a sewn arc was closed with test.group - 1 others, all
+  // sewn with it; a laced arc was closed with others that were then all
+  // sewn (settled before it), so the test is of exactly the garment with
+  // this arc closed.
+  TestResult test;
 };
 
 struct EliminationResult {
   TestResult initial;           // every arc open
   std::vector<int> order;       // arcs in the order they were tested
   std::vector<ArcResult> arcs;  // by arc index
+  int tests = 0;                // tests run after the initial one
   double seconds = 0;
   std::uint64_t steps = 0;
   std::uint64_t projections = 0;

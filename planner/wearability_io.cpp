@@ -205,6 +205,7 @@ void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study,
     arcs[a]["label"] = to_string(arc.label);
     nlohmann::json detail = {{"position", arc.position},
                              {"wearable_when_sewn", arc.test.wearable},
+                             {"tested_with", arc.test.group - 1},
                              {"trials", trials_json(arc.test)}};
     if (study.runs.size() > 1) detail["lace_probability"] = study.lace_probability[a];
     arcs[a]["wearability"] = detail;
@@ -215,6 +216,7 @@ void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study,
       {"wearable_runs", study.wearable_runs},
       {"chosen_run", chosen},
       {"trials_per_test", params.trials},
+      {"group_testing", params.group_testing},
       {"seed", params.seed},
       {"max_steps", params.cloth.max_steps},
       {"switch_steps", params.cloth.switch_steps},
@@ -226,6 +228,7 @@ void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study,
     int sewn = 0;
     for (const auto& arc : result->arcs) sewn += arc.label == Label::Sew;
     summary["sewn"] = sewn;
+    summary["tests"] = result->tests + 1;
     summary["laced"] = static_cast<int>(result->arcs.size()) - sewn;
   }
   cuts["wearability"] = summary;

@@ -97,7 +97,8 @@ std::uint64_t mix(std::uint64_t x) {
 
 }  // namespace
 
-std::optional<CutFolder> read_cut_folder(const std::string& dir, knitout::DiagnosticSink& sink) {
+std::optional<CutFolder> read_cut_folder(const std::string& dir, knitout::DiagnosticSink& sink,
+                                         int min_vertices) {
   const std::string mesh_path = (fs::path(dir) / "cut-mesh.obj").string();
   const std::string cuts_path = (fs::path(dir) / "cuts.json").string();
   const std::size_t errors_before = sink.error_count();
@@ -118,7 +119,7 @@ std::optional<CutFolder> read_cut_folder(const std::string& dir, knitout::Diagno
   if (!cut_mesh || sink.error_count() != errors_before) return std::nullopt;
   auto cover = read_cover_mesh(*cut_mesh, cuts, cuts_path, sink);
   if (!cover) return std::nullopt;
-  return CutFolder{std::move(*cover), std::move(cuts)};
+  return CutFolder{refined_for_cloth(std::move(*cover), min_vertices), std::move(cuts)};
 }
 
 std::uint64_t recut_seed(std::uint64_t wearability_seed, int attempt) {
@@ -203,7 +204,7 @@ CutFolderStudy study_cut_folder(const std::string& dir, CutFolder folder,
     next.cut_seed = recut_seed(params.seed, attempt + 1);
     next.failure = recut_folder(dir, *next.cut_seed);
     if (next.failure.empty()) {
-      auto reread = read_cut_folder(dir, sink);
+      auto reread = read_cut_folder(dir, sink, recut.min_vertices);
       if (reread) {
         result.folder = std::move(*reread);
         seed = next.cut_seed;

@@ -35,9 +35,12 @@ struct CutFolder {
   nlohmann::json cuts;  // cuts.json as read (annotated later)
 };
 
-// Reads DIR/cut-mesh.obj and DIR/cuts.json (read_obj_file, read_cover_mesh).
+// Reads DIR/cut-mesh.obj and DIR/cuts.json (read_obj_file, read_cover_mesh)
+// and subdivides a garment of fewer than `min_vertices` vertices for the
+// cloth (refined_for_cloth; 0 = as read).
 // Diagnostics: W001–W004, W010, W011 (docs/diagnostics.md).
-std::optional<CutFolder> read_cut_folder(const std::string& dir, knitout::DiagnosticSink& sink);
+std::optional<CutFolder> read_cut_folder(const std::string& dir, knitout::DiagnosticSink& sink,
+                                         int min_vertices = 0);
 
 // One cut tried: the folder's own cut (attempt 0) or a re-cut.
 struct CutAttempt {
@@ -52,6 +55,8 @@ struct CutAttempt {
 struct RecutParams {
   // Re-cuts tried after the folder's own cut fails (§5). 0 = never re-cut.
   int limit = 3;
+  // A re-cut folder is read back with this (read_cut_folder).
+  int min_vertices = 0;
 };
 
 // The cut seed of re-cut `attempt` (1, 2, ...): derived from the

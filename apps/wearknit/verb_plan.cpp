@@ -61,6 +61,8 @@ int run_plan(const std::vector<std::string>& args, Context& context) {
       {"runs", "runs", "wearability: eliminations with different arc orders (default 1)"},
       {"max-steps", "max-steps", "wearability: steps before a trial fails (default 3000)"},
       {"resolution", "resolution", "wearability: distance-field cells along the wearer's side"},
+      {"cloth-vertices", "cloth-vertices",
+       "wearability: subdivide a coarser garment to this many vertices (default 1000)"},
       {"recut-limit", "recut-limit",
        "wearability: re-cuts with other seeds when not wearable (default 3)"}};
   static const std::vector<Passed> kSchedule = {
@@ -71,7 +73,8 @@ int run_plan(const std::vector<std::string>& args, Context& context) {
       options.add_options()(p.plan_name, po::value<std::string>(), p.help);
   }
   options.add_options()("threads", po::value<std::string>(),
-                        "wearability and schedule: threads (default 0: all cores)");
+                        "wearability and schedule: threads (default 0: all cores)")(
+      "one-at-a-time", "wearability: test each arc on its own (§5) instead of runs of arcs");
   po::positional_options_description positional;
   positional.add("garment", 1);
   po::variables_map values;
@@ -130,6 +133,7 @@ int run_plan(const std::vector<std::string>& args, Context& context) {
       to->push_back(values["threads"].as<std::string>());
     }
   }
+  if (values.count("one-at-a-time")) plan.wearability_args.push_back("--one-at-a-time");
   plan.pictures = values.count("no-pictures") == 0;
   plan.quiet = values.count("quiet") != 0;
   return run_plan_pipeline(plan, context);

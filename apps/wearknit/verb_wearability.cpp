@@ -158,10 +158,15 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
       "steps before a trial counts as failed")(
       "resolution", po::value<int>(&resolution)->default_value(resolution),
       "distance-field cells along the wearer's longest side")(
+      "cloth-vertices", po::value<int>(&recut.min_vertices)->default_value(1000),
+      "subdivide a garment with fewer vertices until it has this many, so it can bend around "
+      "the wearer (0 = never)")(
       "frames", po::value<std::string>(&frames_dir),
       "write the strip-off of the final configuration as OBJ files into this folder")(
       "frame-every", po::value<int>(&frame_every)->default_value(10), "steps between frames")(
-      "quiet,q", "no progress display");
+      "one-at-a-time",
+      "test each arc on its own, as §5 does, instead of closing runs of arcs together while "
+      "the garment keeps coming off")("quiet,q", "no progress display");
   po::positional_options_description positional;
   positional.add("dir", 1);
   po::variables_map values;
@@ -170,17 +175,19 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
     return *code;
   }
   params.seed = seed;
+  params.group_testing = values.count("one-at-a-time") == 0;
   if (params.trials < 1 || runs < 1 || params.cloth.max_steps < 1 || resolution < 8 ||
-      frame_every < 1 || recut.limit < 0) {
+      frame_every < 1 || recut.limit < 0 || recut.min_vertices < 0) {
     context.err << "wearknit wearability: --trials, --runs, --max-steps and --frame-every must be "
-                   "positive, --recut-limit not negative, --resolution at least 8\n";
+                   "positive, --recut-limit and --cloth-vertices not negative, --resolution at "
+                   "least 8\n";
     return kExitUsage;
   }
   const bool show_progress = context.out_is_terminal && values.count("quiet") == 0;
 
   knitout::DiagnosticSink sink;
   const std::string cuts_path = (fs::path(dir) / "cuts.json").string();
-  auto folder = planner::read_cut_folder(dir, sink);
+  auto folder = planner::read_cut_folder(dir, sink, recut.min_vertices);
   const auto wearer = planner::read_obj_file(wearer_path, sink);
   print_diagnostics(context, sink.diagnostics(), DiagnosticFormat::Text);
   if (sink.has_errors()) {

@@ -85,6 +85,43 @@ TEST(WearabilityTest, ValidateNamesTheBadElement) {
   EXPECT_THROW(planner::eliminate(cover, sphere_field(), params), std::invalid_argument);
 }
 
+TEST(WearabilityTest, SubdividingKeepsTheShapeTheTopologyAndTheArcs) {
+  const CoverMesh cover = torus_cover(1.0, 0.4, 6, 5, 2);  // 30 quads, 30 vertices
+  const CoverMesh fine = planner::subdivided(cover);
+  ASSERT_TRUE(planner::validate(fine).empty()) << planner::validate(fine).front();
+  // V' = V + E + F, F' = 4 F for quads; the Euler characteristic (0) stays.
+  EXPECT_EQ(fine.vertices.size(), 30u + 60u + 30u);
+  EXPECT_EQ(fine.faces.size(), 120u);
+  ASSERT_EQ(fine.arcs.size(), cover.arcs.size());
+  for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
+    EXPECT_EQ(fine.arcs[a].name, cover.arcs[a].name);
+    EXPECT_EQ(fine.arcs[a].edges.size(), 2 * cover.arcs[a].edges.size());
+  }
+  // Old vertices keep their places; every new one is a midpoint or a centre.
+  for (std::size_t v = 0; v < cover.vertices.size(); ++v)
+    EXPECT_EQ(fine.vertices[v], cover.vertices[v]);
+  // Opening both loops still gives one disc: the nu x nv torus grid cut open
+  // is an (nu + 1) x (nv + 1) grid of vertices, 7 x 6 before and 13 x 11
+  // after.
+  EXPECT_EQ(planner::open_cuts(cover, {true, true, true}).positions.size(), 7u * 6u);
+  EXPECT_EQ(planner::open_cuts(fine, {true, true, true}).positions.size(), 13u * 11u);
+  EXPECT_EQ(planner::refined_for_cloth(cover, 100).vertices.size(), 120u);
+  EXPECT_EQ(planner::refined_for_cloth(cover, 121).vertices.size(), 120u + 240u + 120u);
+  EXPECT_EQ(planner::refined_for_cloth(cover, 0).vertices.size(), 30u);
+}
+
+TEST(WearabilityTest, ACoarseTorusCoverComesOffOnceSubdivided) {
+  // A 6 x 5 quad torus (like the shared torus-quad-coarse) worn by itself:
+  // cut into a disc, its 30-face cloth is too stiff to bend off the tube;
+  // subdivided to about 1,900 vertices it comes off.
+  const CoverMesh cover = torus_cover(1.0, 0.4, 6, 5, 1);
+  const auto field = field_of(torus_mesh(1.0, 0.4, 6, 5), 48);
+  auto params = test_params();
+  const std::vector<bool> open{true, true};
+  EXPECT_FALSE(test_open(cover, open, field, params, 1).wearable);
+  EXPECT_TRUE(test_open(planner::refined_for_cloth(cover, 1000), open, field, params, 1).wearable);
+}
+
 TEST(WearabilityTest, WeldingASplitMeshRecoversTheCover) {
   const CoverMesh cover = torus_cover(1.0, 0.4, 12, 6, 2);
   const auto disc = planner::open_cuts(cover, {true, true, true});
@@ -171,6 +208,58 @@ TEST(WearabilityTest, CapArcsAreAllSewnInEveryRun) {
   for (const auto& run : study.runs) {
     ASSERT_EQ(run.order.size(), 3u);
     for (const auto& arc : run.arcs) EXPECT_EQ(arc.label, planner::Label::Sew);
+  }
+}
+
+TEST(WearabilityTest, GroupTestingSewsRunsOfCapArcsWithFewerTests) {
+  // Twelve slits from the rim of an open cap: it comes off whatever is sewn.
+  // One at a time that is twelve tests; runs of 1, 2, 4 and 5 arcs need 4.
+  CoverMesh cap = sphere_mesh(1.0, 12, 4, std::numbers::pi / 2);
+  auto ring = [](int i, int j) { return 1 + (i - 1) * 12 + j; };
+  for (int j = 0; j < 12; ++j)
+    cap.arcs.push_back(planner::arc_from_path({ring(4, j), ring(3, j), ring(2, j)}));
+  auto params = test_params();
+  params.group_testing = false;
+  const auto single = planner::eliminate(cap, sphere_field(), params);
+  params.group_testing = true;
+  const auto grouped = planner::eliminate(cap, sphere_field(), params);
+  ASSERT_TRUE(single.wearable());
+  ASSERT_TRUE(grouped.wearable());
+  EXPECT_EQ(single.tests, 12);
+  EXPECT_EQ(grouped.tests, 4);
+  EXPECT_EQ(single.order, grouped.order) << "the order follows from the seed alone";
+  std::vector<int> group_of_position;
+  for (int p = 0; p < 12; ++p) {
+    const auto& arc = grouped.arcs[grouped.order[p]];
+    EXPECT_EQ(arc.label, planner::Label::Sew);
+    EXPECT_EQ(single.arcs[grouped.order[p]].label, planner::Label::Sew);
+    EXPECT_EQ(arc.position, p);
+    EXPECT_EQ(single.arcs[grouped.order[p]].test.group, 1);
+    group_of_position.push_back(arc.test.group);
+  }
+  EXPECT_EQ(group_of_position, (std::vector<int>{1, 2, 2, 4, 4, 4, 4, 5, 5, 5, 5, 5}));
+}
+
+TEST(WearabilityTest, GroupTestingLacesWhatOneAtATimeLaces) {
+  // The torus cover cut into a disc: sewing any equator arc closes a band of
+  // cloth around the tube, so every equator arc is laced and the meridian
+  // sewn, whether arcs are settled in runs or one at a time.
+  const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  auto params = test_params();
+  for (bool grouped : {false, true}) {
+    params.group_testing = grouped;
+    const auto result = planner::eliminate(cover, torus_field(), params);
+    ASSERT_TRUE(result.wearable());
+    for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
+      const auto& arc = result.arcs[a];
+      EXPECT_EQ(arc.label, a == 0 ? planner::Label::Sew : planner::Label::Lace)
+          << cover.arcs[a].name << (grouped ? " in runs" : " one at a time");
+      EXPECT_EQ(arc.label == planner::Label::Sew, arc.test.wearable);
+      EXPECT_GE(arc.position, 0);
+    }
+    // The final configuration is one a test passed: every arc but the
+    // meridian open.
+    EXPECT_EQ(result.open(), (std::vector<bool>{false, true, true, true, true}));
   }
 }
 

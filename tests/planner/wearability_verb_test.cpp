@@ -67,6 +67,14 @@ TEST(WearabilityVerbTest, LabelsTorusCoverArcsAndWritesPictureAndFrames) {
   EXPECT_EQ(read_file(dir / "wearability.png").substr(1, 3), "PNG");
   EXPECT_TRUE(fs::exists(dir / "frames" / "frame-00000.obj"));
   EXPECT_TRUE(fs::exists(dir / "frames" / "frame-00250.obj"));
+  // The 288-vertex cover was subdivided once for the cloth (--cloth-vertices
+  // 1000 by default): 288 + 576 edge midpoints + 288 face centres, and more
+  // where the open arcs split it.
+  const std::string frame = read_file(dir / "frames" / "frame-00000.obj");
+  std::size_t vertices = 0;
+  for (std::size_t at = frame.find("v "); at != std::string::npos; at = frame.find("\nv ", at + 1))
+    ++vertices;
+  EXPECT_GT(vertices, 1152u);
   fs::remove_all(dir);
 }
 
@@ -80,7 +88,7 @@ TEST(WearabilityVerbTest, ClosedShellIsRejectedAndEveryArcLaced) {
   write_file(dir / "ball.obj", obj_text(ball.vertices, ball.faces));
   const auto result =
       run_wearknit("wearability " + dir.string() + " --wearer " + (dir / "ball.obj").string() +
-                   " --trials 2 --max-steps 600 --resolution 24");
+                   " --trials 2 --max-steps 600 --resolution 24 --cloth-vertices 0");
   EXPECT_EQ(result.exit_code, 1);
   // The folder has no proxy.obj to cut again (§5's re-cut needs one).
   EXPECT_EQ(result.err, (dir / "cuts.json").string() +
@@ -135,7 +143,7 @@ TEST(WearabilityVerbTest, UnwearableCutIsCutAgainWithAnotherSeed) {
   // the new cut, a disc, comes off within it (seed 3: 230 steps).
   const auto result =
       run_wearknit("wearability " + cut.string() + " --wearer " + (dir / "torus.obj").string() +
-                   " --trials 1 --max-steps 400 --seed 3 --resolution 32");
+                   " --trials 1 --max-steps 400 --seed 3 --resolution 32 --cloth-vertices 0");
   ASSERT_EQ(result.exit_code, 0) << result.err << result.out;
   EXPECT_NE(result.out.find("the cut with seed 1 does not come off the wearer with every cut open; "
                             "cutting again with seed " +
@@ -190,7 +198,7 @@ TEST(WearabilityVerbTest, NoWearableCutWithinTheLimitIsW020NamingEveryAttempt) {
   const fs::path cut = dir / "cut";
   const std::string base = "wearability " + cut.string() + " --wearer " +
                            (dir / "torus.obj").string() +
-                           " --trials 1 --max-steps 10 --seed 3 --resolution 24";
+                           " --trials 1 --max-steps 10 --seed 3 --resolution 24 --cloth-vertices 0";
   auto result = run_wearknit(base + " --recut-limit 0");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err, (cut / "cuts.json").string() +
