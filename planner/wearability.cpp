@@ -369,6 +369,7 @@ TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<boo
       });
       outcome.success = result.success;
       outcome.steps = result.steps;
+      outcome.stalled = result.stalled;
       outcome.min_distance = result.min_distance / wearer.scale();
       steps[t] = static_cast<std::uint64_t>(result.steps);
       projections[t] = result.projections;

@@ -115,6 +115,7 @@ struct TrialOutcome {
   std::uint64_t seed = 0;  // of its global-force directions
   bool success = false;
   int steps = 0;
+  bool stalled = false;     // stopped before the budget for lack of progress
   double min_distance = 0;  // at the end, as a fraction of the wearer's scale
 };
 

@@ -183,6 +183,7 @@ nlohmann::json trials_json(const TestResult& test) {
     trials.push_back({{"seed", t.seed},
                       {"success", t.success},
                       {"steps", t.steps},
+                      {"stalled", t.stalled},
                       {"min_distance", t.min_distance}});
   }
   return trials;

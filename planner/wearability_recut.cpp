@@ -241,6 +241,7 @@ json attempts_json(const std::vector<CutAttempt>& attempts) {
       trials.push_back({{"seed", t.seed},
                         {"success", t.success},
                         {"steps", t.steps},
+                        {"stalled", t.stalled},
                         {"min_distance", t.min_distance}});
     }
     json entry = {{"attempt", a.attempt},

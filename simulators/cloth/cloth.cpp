@@ -306,6 +306,18 @@ bool ClothSimulation::all_farther_than(double distance) const {
   return true;
 }
 
+int ClothSimulation::count_nearer_than(double distance) const {
+  int near = 0;
+  for (const Vec3& x : x_) near += wearer_.value(x) < distance;
+  return near;
+}
+
+Vec3 ClothSimulation::centroid() const {
+  Vec3 sum = Vec3::Zero();
+  for (const Vec3& x : x_) sum += x;
+  return x_.empty() ? sum : Vec3(sum / static_cast<double>(x_.size()));
+}
+
 StripResult ClothSimulation::run(
     std::uint64_t seed, const std::function<bool(int step, const ClothSimulation&)>& observer) {
   const int switch_steps = std::max(params_.switch_steps, 1);
@@ -313,6 +325,13 @@ StripResult ClothSimulation::run(
   const double goal = params_.success_distance * scale_;
   const int check_every = std::max(params_.check_every, 1);
   StripResult result;
+  // Progress, looked at every direction switch: the fewest vertices near the
+  // wearer and the farthest the centroid has moved, so far.
+  const Vec3 start = centroid();
+  const int margin = std::max(1, static_cast<int>(x_.size()) / 100);
+  int fewest_near = std::numeric_limits<int>::max();
+  double farthest = 0;
+  int idle_switches = 0;
   for (int s = 0; s < params_.max_steps; ++s) {
     step(axes[s / switch_steps]);
     result.steps = s + 1;
@@ -320,6 +339,24 @@ StripResult ClothSimulation::run(
     if ((s + 1) % check_every == 0 && all_farther_than(goal)) {
       result.success = true;
       break;
+    }
+    if (params_.stall_switches > 0 && (s + 1) % switch_steps == 0) {
+      const int near = count_nearer_than(goal);
+      const double moved = (centroid() - start).norm();
+      bool progress = false;
+      if (fewest_near == std::numeric_limits<int>::max() || near <= fewest_near - margin) {
+        fewest_near = std::min(fewest_near, near);
+        progress = true;
+      }
+      if (moved >= farthest + params_.clearance * scale_) {
+        farthest = moved;
+        progress = true;
+      }
+      idle_switches = progress ? 0 : idle_switches + 1;
+      if (idle_switches >= params_.stall_switches) {
+        result.stalled = true;
+        break;
+      }
     }
   }
   result.min_distance = min_distance();

@@ -14,7 +14,8 @@
 // constant magnitude along an axis direction (±x, ±y, ±z) that changes to a
 // different random axis direction every `switch_steps` steps (§8.2). The test
 // succeeds once every vertex is at least `success_distance` from the wearer
-// and fails when `max_steps` pass first.
+// and fails when `max_steps` pass first, or earlier once it stops making
+// progress (ClothParams::stall_switches).
 //
 // All lengths in ClothParams are fractions of the wearer's scale (the
 // diagonal of its bounding box, SignedDistanceField::scale()), times in
@@ -96,6 +97,13 @@ struct ClothParams {
   int max_steps = 3000;
   // Success is checked every this many steps.
   int check_every = 10;
+  // A trial stops as a failure before max_steps when it has stopped making
+  // progress for this many direction switches in a row (0 = never): neither
+  // fewer vertices within success_distance (by at least 1 % of them) nor its
+  // centroid farther from where it started (by at least a clearance) than at
+  // any earlier switch. Stopping early can only turn a success into a
+  // failure, so the test stays conservative.
+  int stall_switches = 3;
   // Threads for one simulation (0 = all hardware threads).
   int threads = 1;
 };
@@ -103,6 +111,7 @@ struct ClothParams {
 struct StripResult {
   bool success = false;
   int steps = 0;                  // steps simulated
+  bool stalled = false;           // stopped early for lack of progress (stall_switches)
   double min_distance = 0;        // least vertex distance to the wearer at the end, in scale units
   std::uint64_t projections = 0;  // spring and collision projections done
 };
@@ -132,6 +141,9 @@ class ClothSimulation {
   // wearer: min_distance() >= distance, but it stops at the first vertex
   // that is nearer, which is the first one looked at while the garment is on.
   bool all_farther_than(double distance) const;
+  // How many vertices are nearer than `distance` (mesh units) to the wearer.
+  int count_nearer_than(double distance) const;
+  Vec3 centroid() const;
   const std::vector<Vec3>& positions() const { return x_; }
   const std::vector<Spring>& springs() const { return springs_; }
   const ClothMesh& mesh() const { return mesh_; }

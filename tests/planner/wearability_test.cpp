@@ -145,14 +145,25 @@ TEST(WearabilityTest, OpenHemisphericalCapOverASphereIsWearable) {
 
 TEST(WearabilityTest, ClosedShellAroundASphereIsNotWearable) {
   const CoverMesh shell = sphere_mesh(1.0, 12, 6);
-  const auto params = test_params();
-  const auto result = test_open(shell, {}, sphere_field(), params, 1);
-  EXPECT_FALSE(result.wearable);
-  ASSERT_EQ(result.trials.size(), 2u);
-  for (const auto& trial : result.trials) {
-    EXPECT_FALSE(trial.success);
-    EXPECT_EQ(trial.steps, params.cloth.max_steps);
-    EXPECT_LT(trial.min_distance, params.cloth.success_distance);
+  auto params = test_params();
+  // Once the shell stops getting anywhere the trial is stopped early; with
+  // the stall check off it runs the whole budget. It never comes off.
+  for (int stall_switches : {3, 0}) {
+    params.cloth.stall_switches = stall_switches;
+    const auto result = test_open(shell, {}, sphere_field(), params, 1);
+    EXPECT_FALSE(result.wearable);
+    ASSERT_EQ(result.trials.size(), 2u);
+    for (const auto& trial : result.trials) {
+      EXPECT_FALSE(trial.success);
+      EXPECT_EQ(trial.stalled, stall_switches > 0);
+      if (stall_switches > 0) {
+        EXPECT_LT(trial.steps, params.cloth.max_steps);
+        EXPECT_GE(trial.steps, (stall_switches + 1) * params.cloth.switch_steps);
+      } else {
+        EXPECT_EQ(trial.steps, params.cloth.max_steps);
+      }
+      EXPECT_LT(trial.min_distance, params.cloth.success_distance);
+    }
   }
 }
 
