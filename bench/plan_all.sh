@@ -7,18 +7,7 @@
 # Environment: PLAN_OPTS extra options for every plan (e.g. "--wear-trials 2"),
 # MESHES a list of file names instead of every closed mesh, OUT the folder for
 # the plans (default a temporary one, removed), TIMEOUT seconds per mesh (600).
-set -euo pipefail
-cd "$(dirname "$0")/.."
-build=${1:-build}
-shared=${WEARKNIT_SHARED:-../shared}
-wearknit=$build/apps/wearknit/wearknit
-[ -x "$wearknit" ] || { echo "no $wearknit: build it first" >&2; exit 2; }
-out=${OUT:-}
-if [ -z "$out" ]; then
-  out=$(mktemp -d)
-  trap 'rm -rf "$out"' EXIT
-fi
-mkdir -p "$out"
+source "$(dirname "$0")/plan_common.sh"
 if [ -z "${MESHES:-}" ]; then
   MESHES=$(cd "$shared/meshes" && python3 tools/meshstats.py stats --json ./*.obj |
     python3 -c 'import json,sys

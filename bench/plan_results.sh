@@ -7,18 +7,7 @@
 #   bench/plan_results.sh [BUILD_DIR]        (default build)
 # Environment: PLAN_OPTS extra plan options, OUT the folder for the plans
 # (default a temporary one, removed), TIMEOUT seconds per plan (3600).
-set -euo pipefail
-cd "$(dirname "$0")/.."
-build=${1:-build}
-shared=${WEARKNIT_SHARED:-../shared}
-wearknit=$build/apps/wearknit/wearknit
-[ -x "$wearknit" ] || { echo "no $wearknit: build it first" >&2; exit 2; }
-out=${OUT:-}
-if [ -z "$out" ]; then
-  out=$(mktemp -d)
-  trap 'rm -rf "$out"' EXIT
-fi
-mkdir -p "$out"
+source "$(dirname "$0")/plan_common.sh"
 echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg); options: ${PLAN_OPTS:-none}" >&2
 rows=()
 seed_rows=()

@@ -21,54 +21,13 @@
 #include "knitout/output_file.hpp"
 #include "knitout/parser.hpp"
 #include "planner/mesh_io.hpp"
+#include "planner/shapes.hpp"
 #include "simulators/bed/validate.hpp"
 
 namespace wearknit::cli {
 
 namespace po = boost::program_options;
 namespace fs = std::filesystem;
-
-namespace {
-
-// An all-quad ellipsoid: a cube whose faces are split into n x n quads,
-// projected onto the sphere of `radius_mm` and stretched by `z_stretch`
-// along z. Eight valence-3 vertices (the cube's corners), outward normals
-// (counter-clockwise faces seen from outside).
-planner::SurfaceMesh make_ellipsoid(double radius_mm, double z_stretch, int n) {
-  planner::SurfaceMesh mesh;
-  std::map<std::array<int, 3>, int> index;  // cube lattice point -> vertex
-  auto vertex = [&](const std::array<int, 3>& k) {
-    const auto [it, fresh] = index.try_emplace(k, static_cast<int>(mesh.positions.size()));
-    if (fresh) {
-      const planner::Vec3 on_cube(2.0 * k[0] / n - 1, 2.0 * k[1] / n - 1, 2.0 * k[2] / n - 1);
-      mesh.positions.push_back(on_cube.normalized().cwiseProduct(planner::Vec3(1, 1, z_stretch)) *
-                               radius_mm);
-    }
-    return it->second;
-  };
-  for (int a = 0; a < 3; ++a) {
-    const int b = (a + 1) % 3, c = (a + 2) % 3;  // (b, c, a) is right-handed
-    for (int side : {0, n}) {
-      for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
-          std::vector<int> face;
-          for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
-            std::array<int, 3> k{};
-            k[a] = side;
-            k[b] = i + di;
-            k[c] = j + dj;
-            face.push_back(vertex(k));
-          }
-          if (side == 0) std::reverse(face.begin(), face.end());  // faces -a
-          mesh.faces.push_back(face);
-        }
-      }
-    }
-  }
-  return mesh;
-}
-
-}  // namespace
 
 int run_demo(const std::vector<std::string>& args, Context& context) {
   PlanOptions plan;
@@ -102,9 +61,9 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
   plan.wearer = (dir / "input" / "wearer.obj").string();
   plan.garment = (dir / "input" / "garment.obj").string();
   for (const auto& [path, shape, header] :
-       {std::tuple{plan.wearer, make_ellipsoid(25, 1.8, 6),
+       {std::tuple{plan.wearer, planner::quad_ellipsoid(25, 1.8, 6),
                    "wearknit demo: the wearer, an ellipsoid, in mm"},
-        std::tuple{plan.garment, make_ellipsoid(26.5, 1.75, 6),
+        std::tuple{plan.garment, planner::quad_ellipsoid(26.5, 1.75, 6),
                    "wearknit demo: the garment, the ellipsoid 1.5 mm further out, in mm"}}) {
     const std::string failure = knitout::write_file_atomically(
         path, [&](std::ostream& out) { planner::write_obj(out, shape, header); });

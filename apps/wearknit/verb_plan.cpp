@@ -62,7 +62,7 @@ int run_plan(const std::vector<std::string>& args, Context& context) {
       {"max-steps", "max-steps", "wearability: steps before a trial fails (default 3000)"},
       {"resolution", "resolution", "wearability: distance-field cells along the wearer's side"},
       {"cloth-vertices", "cloth-vertices",
-       "wearability: subdivide a coarser garment to this many vertices (default 1000)"},
+       "wearability: subdivide a coarser garment to this many vertices (default 500)"},
       {"recut-limit", "recut-limit",
        "wearability: re-cuts with other seeds when not wearable (default 3)"}};
   static const std::vector<Passed> kSchedule = {

@@ -158,7 +158,7 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
       "steps before a trial counts as failed")(
       "resolution", po::value<int>(&resolution)->default_value(resolution),
       "distance-field cells along the wearer's longest side")(
-      "cloth-vertices", po::value<int>(&recut.min_vertices)->default_value(1000),
+      "cloth-vertices", po::value<int>(&recut.min_vertices)->default_value(500),
       "subdivide a garment with fewer vertices until it has this many, so it can bend around "
       "the wearer (0 = never)")(
       "frames", po::value<std::string>(&frames_dir),

@@ -14,6 +14,8 @@
 #include <sstream>
 
 #include "knitout/parser.hpp"
+#include "planner/mesh_io.hpp"
+#include "planner/shapes.hpp"
 #include "simulators/bed/profile.hpp"
 #include "simulators/bed/validate.hpp"
 #include "tests/test_support.hpp"
@@ -27,48 +29,11 @@ using test::read_file;
 using test::run_wearknit;
 using test::write_file;
 
-// An all-quad ellipsoid as OBJ text: a cube of n x n quads per side projected
-// onto the sphere of `radius`, stretched by `z_stretch` along z; outward
-// faces.
+// An all-quad ellipsoid as OBJ text (planner::quad_ellipsoid).
 std::string ellipsoid_obj(double radius, double z_stretch, int n) {
   std::ostringstream obj;
-  std::map<std::array<int, 3>, int> index;
-  auto vertex = [&](const std::array<int, 3>& k) {
-    const auto [it, fresh] = index.try_emplace(k, static_cast<int>(index.size()) + 1);
-    if (fresh) {
-      double p[3], length = 0;
-      for (int i = 0; i < 3; ++i) {
-        p[i] = 2.0 * k[i] / n - 1;
-        length += p[i] * p[i];
-      }
-      length = std::sqrt(length);
-      obj << "v " << p[0] / length * radius << ' ' << p[1] / length * radius << ' '
-          << p[2] / length * radius * z_stretch << '\n';
-    }
-    return it->second;
-  };
-  std::ostringstream faces;
-  for (int a = 0; a < 3; ++a) {
-    for (int side : {0, n}) {
-      for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
-          std::vector<int> face;
-          for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
-            std::array<int, 3> k{};
-            k[a] = side;
-            k[(a + 1) % 3] = i + di;
-            k[(a + 2) % 3] = j + dj;
-            face.push_back(vertex(k));
-          }
-          if (side == 0) std::reverse(face.begin(), face.end());
-          faces << 'f';
-          for (int v : face) faces << ' ' << v;
-          faces << '\n';
-        }
-      }
-    }
-  }
-  return obj.str() + faces.str();
+  planner::write_obj(obj, planner::quad_ellipsoid(radius, z_stretch, n));
+  return obj.str();
 }
 
 json read_json(const fs::path& path) {

@@ -119,7 +119,7 @@ TEST(WearabilityTest, ACoarseTorusCoverComesOffOnceSubdivided) {
   auto params = test_params();
   const std::vector<bool> open{true, true};
   EXPECT_FALSE(test_open(cover, open, field, params, 1).wearable);
-  EXPECT_TRUE(test_open(planner::refined_for_cloth(cover, 1000), open, field, params, 1).wearable);
+  EXPECT_TRUE(test_open(planner::refined_for_cloth(cover, 500), open, field, params, 1).wearable);
 }
 
 TEST(WearabilityTest, WeldingASplitMeshRecoversTheCover) {

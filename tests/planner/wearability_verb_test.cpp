@@ -68,7 +68,7 @@ TEST(WearabilityVerbTest, LabelsTorusCoverArcsAndWritesPictureAndFrames) {
   EXPECT_TRUE(fs::exists(dir / "frames" / "frame-00000.obj"));
   EXPECT_TRUE(fs::exists(dir / "frames" / "frame-00250.obj"));
   // The 288-vertex cover was subdivided once for the cloth (--cloth-vertices
-  // 1000 by default): 288 + 576 edge midpoints + 288 face centres, and more
+  // 500 by default): 288 + 576 edge midpoints + 288 face centres, and more
   // where the open arcs split it.
   const std::string frame = read_file(dir / "frames" / "frame-00000.obj");
   std::size_t vertices = 0;
