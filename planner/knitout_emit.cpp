@@ -12,6 +12,9 @@ namespace planner {
 namespace {
 
 constexpr int kTail = -2;  // the last loop of a bind-off chain
+// Loops one needle may hold (the swg091n2 profile's limit, V037): the
+// emitter keeps one token per physical loop and never goes beyond it.
+constexpr std::size_t kMaxLoops = 4;
 int intermediate(int face) {
   return -(face + 10);
 }  // the loop of a face between its passes
@@ -132,6 +135,9 @@ class Emitter {
       loops.assign(1, token);
       ++result_.stats.knits;
     } else {
+      if (loops.size() >= kMaxLoops)
+        throw std::logic_error("a tuck on " + needle_name(b, n) + " would stack more than " +
+                               std::to_string(kMaxLoops) + " loops");
       loops.push_back(token);
       ++result_.stats.tucks;
     }
@@ -148,6 +154,10 @@ class Emitter {
     line("xfer " + needle_name(from_bed, from) + " " + needle_name(to_bed, to));
     auto& src = bed(from_bed, from);
     auto& dst = bed(to_bed, to);
+    if (src.size() + dst.size() > kMaxLoops)
+      throw std::logic_error("xfer " + needle_name(from_bed, from) + " " + needle_name(to_bed, to) +
+                             " would stack " + std::to_string(src.size() + dst.size()) +
+                             " loops on one needle");
     dst.insert(dst.end(), src.begin(), src.end());
     src.clear();
     ++result_.stats.transfers;
@@ -158,12 +168,11 @@ class Emitter {
   void drop_tail(int n) {
     auto& loops = front_[n];
     if (std::find(loops.begin(), loops.end(), kTail) == loops.end()) return;
-    if (loops.size() != 1)
+    if (std::any_of(loops.begin(), loops.end(), [](int t) { return t != kTail; }))
       throw std::logic_error("a bind-off tail shares f" + std::to_string(n) + " with other loops");
     const int to = parking_needle(n, row_index_ - 1, +1);
     if (to != n) {
       move_loop(n, to);
-      front_[to].assign(1, kTail);
       return;
     }
     touch(PassKey{'d', 0, racking_}, n);
@@ -209,6 +218,11 @@ class Emitter {
     rack(0);
     end_pass();
   }
+  // Every loop on front needle n now belongs to `token` (the loops of a
+  // stack that are knit through together, or a chain's tail).
+  void relabel(int n, int token) {
+    for (int& t : front_[n]) t = token;
+  }
   void bring_in() {
     line("inhook " + params_.carrier);
     in_ = true;
@@ -252,21 +266,51 @@ class Emitter {
     return params_.pattern == StitchPattern::Seed && ((2 * row_index + pass + n) % 2 + 2) % 2 == 1;
   }
 
+  // A decrease stacks the loops of its sources on one needle; a source may
+  // already hold several (a short row's stitch and the tuck of its turn, a
+  // loop that took bind-off tails). Where the stack would exceed kMaxLoops
+  // the fullest sources are knit first, each into one loop, in one pass
+  // before the transfers. A fan of more single loops than a needle holds
+  // cannot be knit this way: a broken invariant.
+  void consolidate(const std::vector<LoopMove>& moves) {
+    std::map<int, std::vector<int>> sources;  // destination -> source needles
+    for (const LoopMove& m : moves) {
+      auto& list = sources[m.to];
+      if (std::find(list.begin(), list.end(), m.from) == list.end()) list.push_back(m.from);
+    }
+    std::vector<int> knit;
+    for (auto& [to, list] : sources) {
+      std::size_t total = 0;
+      for (int n : list) total += front_[n].size();
+      if (total <= kMaxLoops) continue;
+      std::stable_sort(list.begin(), list.end(),
+                       [&](int a, int b) { return front_[a].size() > front_[b].size(); });
+      for (int n : list) {
+        if (total <= kMaxLoops || front_[n].size() < 2) break;
+        total -= front_[n].size() - 1;
+        knit.push_back(n);
+      }
+      if (total > kMaxLoops)
+        throw std::logic_error("f" + std::to_string(to) + " would take " + std::to_string(total) +
+                               " loops from " + std::to_string(list.size()) + " needles");
+    }
+    if (knit.empty()) return;
+    std::sort(knit.begin(), knit.end());
+    int dir = +1;
+    if (in_ && std::abs(carrier_at_ - knit.back()) < std::abs(carrier_at_ - knit.front())) dir = -1;
+    if (dir < 0) std::reverse(knit.begin(), knit.end());
+    end_pass();
+    cut_yarn_if_far(knit.front());
+    for (int n : knit) stitch("knit", dir, 'f', n, front_[n].front());
+    release_if_pending();
+  }
+
   void knit_row(int r, int row_index) {
     const Row& row = s_.rows[static_cast<std::size_t>(r)];
     const auto& faces = row.faces;
     auto work = [&](int f) { return needle(s_.faces[static_cast<std::size_t>(f)].out[0]); };
     const int left = work(faces.front());
     const int right = needle(s_.faces[static_cast<std::size_t>(faces.back())].out.back());
-
-    // Yarn: start the row on the side nearer the carrier; cut and bring the
-    // yarn in again rather than float far.
-    int dir = +1;
-    if (in_ && std::abs(carrier_at_ - right) < std::abs(carrier_at_ - left)) dir = -1;
-    const int start = dir > 0 ? left : right;
-    cut_yarn_if_far(start);
-    std::vector<int> order(faces.begin(), faces.end());  // in pass A's direction
-    if (dir < 0) std::reverse(order.begin(), order.end());
 
     // Transfers: every loop from where it was made to its face's needle.
     std::vector<LoopMove> moves;
@@ -284,6 +328,17 @@ class Emitter {
     for (int f : faces) {
       for (int e : s_.faces[static_cast<std::size_t>(f)].out) drop_tail(needle(e));
     }
+    // No needle may end up with more loops than it holds (V037).
+    consolidate(moves);
+
+    // Yarn: start the row on the side nearer the carrier; cut and bring the
+    // yarn in again rather than float far.
+    int dir = +1;
+    if (in_ && std::abs(carrier_at_ - right) < std::abs(carrier_at_ - left)) dir = -1;
+    const int start = dir > 0 ? left : right;
+    cut_yarn_if_far(start);
+    std::vector<int> order(faces.begin(), faces.end());  // in pass A's direction
+    if (dir < 0) std::reverse(order.begin(), order.end());
     std::map<int, bool> moving;
     for (const LoopMove& m : moves) moving[m.from] = m.from != m.to;
     const auto plan = schoolbus(
@@ -330,7 +385,9 @@ class Emitter {
     std::vector<int> cast;
     for (int f : order) {
       const FaceLinks& fl = s_.faces[static_cast<std::size_t>(f)];
-      if (std::any_of(fl.in.begin(), fl.in.end(), [&](int e) { return !loop_below(e); }))
+      // A face that some loop from below reaches is held by it: a tuck there
+      // would only add to the needle's stack.
+      if (std::none_of(fl.in.begin(), fl.in.end(), [&](int e) { return loop_below(e); }))
         cast.push_back(f);
     }
     if (!cast.empty()) {
@@ -397,7 +454,7 @@ class Emitter {
     // The new loops now belong to the course edges above.
     for (int f : faces) {
       const FaceLinks& fl = s_.faces[static_cast<std::size_t>(f)];
-      front_[work(f)].assign(1, fl.out[0]);
+      relabel(work(f), fl.out[0]);
       for (int e : fl.out) where_[e] = needle(e);
     }
 
@@ -449,7 +506,10 @@ class Emitter {
       chain_dir = -dir;
     }
     const auto move = [&](int from, int to) { move_loop(from, to); };
-    if (run.size() > 1) {
+    // A run of one needle is moved as it is, unless it holds a stack (a
+    // short row's stitch and the tuck of its turn): that is knit into one
+    // loop first, so the holder takes one loop per run.
+    if (run.size() > 1 || front_[needle(run[0])].size() > 1) {
       end_pass();
       cut_yarn_if_far(needle(run[0]));
       stitch("knit", chain_dir, 'f', needle(run[0]), kTail);
@@ -470,7 +530,7 @@ class Emitter {
         parked = parking_needle(last, row_index_, away);
       }
       if (parked != last) move(last, parked);
-      front_[parked].assign(1, kTail);
+      relabel(parked, kTail);
       return;
     }
     move(last, needle(holder));

@@ -422,6 +422,42 @@ TEST(KnitoutEmitTest, RandomShapesGiveValidKnitout) {
   EXPECT_GT(pieces, 300);
 }
 
+TEST(KnitoutEmitTest, AFanOfDecreasesNeverStacksMoreThanFourLoops) {
+  // Bind-off tails joining the loops a decrease then stacks (anchor's V037):
+  // every needle holds at most four loops, in both patterns, and every
+  // subdivided face is still knit once.
+  const StitchMesh mesh = fx::decrease_fan(2);
+  const Schedule s = run(mesh);
+  ASSERT_EQ(s.pieces.size(), 1u);
+  for (StitchPattern pattern : {StitchPattern::Plain, StitchPattern::Seed}) {
+    SCOPED_TRACE(std::string(stitch_pattern_name(pattern)));
+    EmitParams params;
+    params.pattern = pattern;
+    EmittedPiece piece;
+    ASSERT_NO_THROW(piece = emit_piece(mesh, s, 0, params));
+    knitout::DiagnosticSink sink;
+    const auto check = testing::check_bed(knitout::parse_string(piece.knitout, "fan", sink));
+    ASSERT_FALSE(sink.has_errors());
+    EXPECT_TRUE(check.errors.empty()) << check.errors.front() << "\n" << piece.knitout;
+    EXPECT_EQ(static_cast<int>(piece.trace.size()), subdivided_faces(mesh, s, s.pieces[0]));
+  }
+}
+
+TEST(KnitoutEmitTest, ADecreaseOfTwoStacksKnitsTheFullerOneFirst) {
+  // 3 + 2 loops would meet on the decrease's needle: the stack of three is
+  // knit into one loop before the transfers, so the needle takes three.
+  const StitchMesh mesh = fx::stacked_decrease(2);
+  const Schedule s = run(mesh);
+  ASSERT_EQ(s.pieces.size(), 1u);
+  EmittedPiece piece;
+  ASSERT_NO_THROW(piece = emit_piece(mesh, s, 0, EmitParams{}));
+  knitout::DiagnosticSink sink;
+  const auto check = testing::check_bed(knitout::parse_string(piece.knitout, "stacks", sink));
+  ASSERT_FALSE(sink.has_errors());
+  EXPECT_TRUE(check.errors.empty()) << check.errors.front();
+  EXPECT_EQ(static_cast<int>(piece.trace.size()), subdivided_faces(mesh, s, s.pieces[0]));
+}
+
 TEST(KnitoutEmitTest, CarrierComesInWithTheHookAndLeavesWithIt) {
   const StitchMesh mesh = fx::rectangle(6, 3);
   const Schedule s = run(mesh);
