@@ -64,7 +64,7 @@ TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
 }
 
 TEST(ScheduleCliTest, CrossingBranchesGetASewCutAndTwoPieces) {
-  const fs::path dir = plan_folder(fixtures::crossing_branches(12, 3, 10), "sched-x");
+  const fs::path dir = plan_folder(fixtures::crossing_branches(12, 3, 14), "sched-x");
   const auto result =
       wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 8 --pattern seed");
   ASSERT_EQ(result.exit_code, 0) << result.err;
