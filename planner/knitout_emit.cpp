@@ -165,19 +165,25 @@ class Emitter {
   // A bind-off tail on a needle this row needs moves to a needle needed
   // later or never (park); only when no needle within the racking limit is
   // free is it dropped (which lets its chain unravel: V053).
-  void drop_tail(int n) {
+  // `knit_through`: this row knits needle n with room for the tail in the
+  // stack; a tail with nowhere to wait then stays and is knit through with
+  // the stitch's loops, which holds its chain as a holder would.
+  // Returns true when the tail stays to be knit through.
+  bool drop_tail(int n, bool knit_through) {
     auto& loops = front_[n];
-    if (std::find(loops.begin(), loops.end(), kTail) == loops.end()) return;
+    if (std::find(loops.begin(), loops.end(), kTail) == loops.end()) return false;
     if (std::any_of(loops.begin(), loops.end(), [](int t) { return t != kTail; }))
       throw std::logic_error("a bind-off tail shares f" + std::to_string(n) + " with other loops");
     const int to = parking_needle(n, row_index_ - 1, +1);
     if (to != n) {
       move_loop(n, to);
-      return;
+      return false;
     }
+    if (knit_through) return true;
     touch(PassKey{'d', 0, racking_}, n);
     line("drop f" + std::to_string(n));
     loops.clear();
+    return false;
   }
   // The first row after row `after` that needs needle n (INT_MAX: none).
   int next_use(int n, int after) const {
@@ -272,7 +278,7 @@ class Emitter {
   // the fullest sources are knit first, each into one loop, in one pass
   // before the transfers. A fan of more single loops than a needle holds
   // cannot be knit this way: a broken invariant.
-  void consolidate(const std::vector<LoopMove>& moves) {
+  std::vector<int> consolidation(const std::vector<LoopMove>& moves) {
     std::map<int, std::vector<int>> sources;  // destination -> source needles
     for (const LoopMove& m : moves) {
       auto& list = sources[m.to];
@@ -282,6 +288,10 @@ class Emitter {
     for (auto& [to, list] : sources) {
       std::size_t total = 0;
       for (int n : list) total += front_[n].size();
+      // A bind-off tail waiting there to be knit through (loops that leave
+      // the needle in these transfers do not count).
+      if (std::none_of(moves.begin(), moves.end(), [&](const LoopMove& m) { return m.from == to; }))
+        total += front_[to].size();
       if (total <= kMaxLoops) continue;
       std::stable_sort(list.begin(), list.end(),
                        [&](int a, int b) { return front_[a].size() > front_[b].size(); });
@@ -294,6 +304,10 @@ class Emitter {
         throw std::logic_error("f" + std::to_string(to) + " would take " + std::to_string(total) +
                                " loops from " + std::to_string(list.size()) + " needles");
     }
+    return knit;
+  }
+  // Knits each of `knit` (needles holding stacks) into one loop, in one pass.
+  void knit_stacks(std::vector<int> knit) {
     if (knit.empty()) return;
     std::sort(knit.begin(), knit.end());
     int dir = +1;
@@ -324,12 +338,59 @@ class Emitter {
         moves.push_back({it->second, work(f)});
       }
     }
-    // Bind-off tails on the needles this row needs are let go first.
-    for (int f : faces) {
-      for (int e : s_.faces[static_cast<std::size_t>(f)].out) drop_tail(needle(e));
+    // Bind-off tails on the needles this row needs are moved away first, or
+    // knit through where this row knits and the stack has room.
+    std::map<int, std::size_t> arriving;  // work needle -> loops the transfers bring
+    {
+      std::map<int, std::vector<int>> from;
+      for (const LoopMove& m : moves) {
+        auto& list = from[m.to];
+        if (std::find(list.begin(), list.end(), m.from) == list.end()) list.push_back(m.from);
+      }
+      for (const auto& [to, list] : from) {
+        for (int n : list) arriving[to] += front_[n].size();
+      }
     }
-    // No needle may end up with more loops than it holds (V037).
-    consolidate(moves);
+    std::vector<int> kept;  // tails left to be knit through
+    for (int f : faces) {
+      const auto& out = s_.faces[static_cast<std::size_t>(f)].out;
+      for (std::size_t k = 0; k < out.size(); ++k) {
+        const int n = needle(out[k]);
+        const auto it = front_.find(n);
+        const std::size_t tail = it == front_.end() ? 0 : it->second.size();
+        const std::size_t cast_on = arriving.count(n) == 0 ? 1 : 0;  // its tuck
+        if (drop_tail(n, k == 0 && arriving[n] + tail + cast_on <= kMaxLoops)) kept.push_back(n);
+      }
+    }
+    std::map<int, bool> moving;
+    for (const LoopMove& m : moves) moving[m.from] = m.from != m.to;
+    const auto plan_transfers = [&] {
+      return schoolbus(
+          moves,
+          [&](int n) {
+            auto it = front_.find(n);
+            if (it == front_.end() || it->second.empty()) return false;
+            auto mv = moving.find(n);
+            return mv == moving.end() || !mv->second;
+          },
+          8);
+    };
+    // No needle may end up with more loops than it holds (V037). A kept
+    // tail occupies its needle, so a far-travelling loop may find no stop
+    // on its way, or a decrease no room: then the kept tails are dropped
+    // after all (V053) and the transfers planned without them.
+    std::vector<int> knit_first;
+    std::vector<Transfer> plan;
+    try {
+      knit_first = consolidation(moves);
+      plan = plan_transfers();
+    } catch (const std::logic_error&) {
+      if (kept.empty()) throw;
+      for (int n : kept) drop_tail(n, false);
+      knit_first = consolidation(moves);
+      plan = plan_transfers();
+    }
+    knit_stacks(knit_first);
 
     // Yarn: start the row on the side nearer the carrier; cut and bring the
     // yarn in again rather than float far.
@@ -339,17 +400,6 @@ class Emitter {
     cut_yarn_if_far(start);
     std::vector<int> order(faces.begin(), faces.end());  // in pass A's direction
     if (dir < 0) std::reverse(order.begin(), order.end());
-    std::map<int, bool> moving;
-    for (const LoopMove& m : moves) moving[m.from] = m.from != m.to;
-    const auto plan = schoolbus(
-        moves,
-        [&](int n) {
-          auto it = front_.find(n);
-          if (it == front_.end() || it->second.empty()) return false;
-          auto mv = moving.find(n);
-          return mv == moving.end() || !mv->second;
-        },
-        8);
     end_pass();
     for (const Transfer& t : plan) {
       rack(t.racking);
@@ -365,7 +415,7 @@ class Emitter {
       const FaceLinks& fl = s_.faces[static_cast<std::size_t>(f)];
       auto& loops = front_[work(f)];
       for (int t : loops) {
-        if (std::find(fl.in.begin(), fl.in.end(), t) == fl.in.end())
+        if (t != kTail && std::find(fl.in.begin(), fl.in.end(), t) == fl.in.end())
           throw std::logic_error("row " + std::to_string(r) + ": needle f" +
                                  std::to_string(work(f)) + " of face " + std::to_string(f) +
                                  " holds a loop that is not the face's (token " +
