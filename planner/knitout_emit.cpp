@@ -12,6 +12,9 @@ namespace planner {
 namespace {
 
 constexpr int kTail = -2;  // the last loop of a bind-off chain
+// Loops one needle may hold (the swg091n2 profile's limit, V037): the
+// emitter keeps one token per physical loop and never goes beyond it.
+constexpr std::size_t kMaxLoops = 4;
 int intermediate(int face) {
   return -(face + 10);
 }  // the loop of a face between its passes
@@ -132,6 +135,9 @@ class Emitter {
       loops.assign(1, token);
       ++result_.stats.knits;
     } else {
+      if (loops.size() >= kMaxLoops)
+        throw std::logic_error("a tuck on " + needle_name(b, n) + " would stack more than " +
+                               std::to_string(kMaxLoops) + " loops");
       loops.push_back(token);
       ++result_.stats.tucks;
     }
@@ -148,6 +154,10 @@ class Emitter {
     line("xfer " + needle_name(from_bed, from) + " " + needle_name(to_bed, to));
     auto& src = bed(from_bed, from);
     auto& dst = bed(to_bed, to);
+    if (src.size() + dst.size() > kMaxLoops)
+      throw std::logic_error("xfer " + needle_name(from_bed, from) + " " + needle_name(to_bed, to) +
+                             " would stack " + std::to_string(src.size() + dst.size()) +
+                             " loops on one needle");
     dst.insert(dst.end(), src.begin(), src.end());
     src.clear();
     ++result_.stats.transfers;
@@ -155,20 +165,25 @@ class Emitter {
   // A bind-off tail on a needle this row needs moves to a needle needed
   // later or never (park); only when no needle within the racking limit is
   // free is it dropped (which lets its chain unravel: V053).
-  void drop_tail(int n) {
+  // `knit_through`: this row knits needle n with room for the tail in the
+  // stack; a tail with nowhere to wait then stays and is knit through with
+  // the stitch's loops, which holds its chain as a holder would.
+  // Returns true when the tail stays to be knit through.
+  bool drop_tail(int n, bool knit_through) {
     auto& loops = front_[n];
-    if (std::find(loops.begin(), loops.end(), kTail) == loops.end()) return;
-    if (loops.size() != 1)
+    if (std::find(loops.begin(), loops.end(), kTail) == loops.end()) return false;
+    if (std::any_of(loops.begin(), loops.end(), [](int t) { return t != kTail; }))
       throw std::logic_error("a bind-off tail shares f" + std::to_string(n) + " with other loops");
     const int to = parking_needle(n, row_index_ - 1, +1);
     if (to != n) {
       move_loop(n, to);
-      front_[to].assign(1, kTail);
-      return;
+      return false;
     }
+    if (knit_through) return true;
     touch(PassKey{'d', 0, racking_}, n);
     line("drop f" + std::to_string(n));
     loops.clear();
+    return false;
   }
   // The first row after row `after` that needs needle n (INT_MAX: none).
   int next_use(int n, int after) const {
@@ -208,6 +223,11 @@ class Emitter {
     xfer('b', from, 'f', to);
     rack(0);
     end_pass();
+  }
+  // Every loop on front needle n now belongs to `token` (the loops of a
+  // stack that are knit through together, or a chain's tail).
+  void relabel(int n, int token) {
+    for (int& t : front_[n]) t = token;
   }
   void bring_in() {
     line("inhook " + params_.carrier);
@@ -252,21 +272,59 @@ class Emitter {
     return params_.pattern == StitchPattern::Seed && ((2 * row_index + pass + n) % 2 + 2) % 2 == 1;
   }
 
+  // A decrease stacks the loops of its sources on one needle; a source may
+  // already hold several (a short row's stitch and the tuck of its turn, a
+  // loop that took bind-off tails). Where the stack would exceed kMaxLoops
+  // the fullest sources are knit first, each into one loop, in one pass
+  // before the transfers. A fan of more single loops than a needle holds
+  // cannot be knit this way: a broken invariant.
+  std::vector<int> consolidation(const std::vector<LoopMove>& moves) {
+    std::map<int, std::vector<int>> sources;  // destination -> source needles
+    for (const LoopMove& m : moves) {
+      auto& list = sources[m.to];
+      if (std::find(list.begin(), list.end(), m.from) == list.end()) list.push_back(m.from);
+    }
+    std::vector<int> knit;
+    for (auto& [to, list] : sources) {
+      std::size_t total = 0;
+      for (int n : list) total += front_[n].size();
+      // A bind-off tail waiting there to be knit through (loops that leave
+      // the needle in these transfers do not count).
+      if (std::none_of(moves.begin(), moves.end(), [&](const LoopMove& m) { return m.from == to; }))
+        total += front_[to].size();
+      if (total <= kMaxLoops) continue;
+      std::stable_sort(list.begin(), list.end(),
+                       [&](int a, int b) { return front_[a].size() > front_[b].size(); });
+      for (int n : list) {
+        if (total <= kMaxLoops || front_[n].size() < 2) break;
+        total -= front_[n].size() - 1;
+        knit.push_back(n);
+      }
+      if (total > kMaxLoops)
+        throw std::logic_error("f" + std::to_string(to) + " would take " + std::to_string(total) +
+                               " loops from " + std::to_string(list.size()) + " needles");
+    }
+    return knit;
+  }
+  // Knits each of `knit` (needles holding stacks) into one loop, in one pass.
+  void knit_stacks(std::vector<int> knit) {
+    if (knit.empty()) return;
+    std::sort(knit.begin(), knit.end());
+    int dir = +1;
+    if (in_ && std::abs(carrier_at_ - knit.back()) < std::abs(carrier_at_ - knit.front())) dir = -1;
+    if (dir < 0) std::reverse(knit.begin(), knit.end());
+    end_pass();
+    cut_yarn_if_far(knit.front());
+    for (int n : knit) stitch("knit", dir, 'f', n, front_[n].front());
+    release_if_pending();
+  }
+
   void knit_row(int r, int row_index) {
     const Row& row = s_.rows[static_cast<std::size_t>(r)];
     const auto& faces = row.faces;
     auto work = [&](int f) { return needle(s_.faces[static_cast<std::size_t>(f)].out[0]); };
     const int left = work(faces.front());
     const int right = needle(s_.faces[static_cast<std::size_t>(faces.back())].out.back());
-
-    // Yarn: start the row on the side nearer the carrier; cut and bring the
-    // yarn in again rather than float far.
-    int dir = +1;
-    if (in_ && std::abs(carrier_at_ - right) < std::abs(carrier_at_ - left)) dir = -1;
-    const int start = dir > 0 ? left : right;
-    cut_yarn_if_far(start);
-    std::vector<int> order(faces.begin(), faces.end());  // in pass A's direction
-    if (dir < 0) std::reverse(order.begin(), order.end());
 
     // Transfers: every loop from where it was made to its face's needle.
     std::vector<LoopMove> moves;
@@ -280,21 +338,68 @@ class Emitter {
         moves.push_back({it->second, work(f)});
       }
     }
-    // Bind-off tails on the needles this row needs are let go first.
+    // Bind-off tails on the needles this row needs are moved away first, or
+    // knit through where this row knits and the stack has room.
+    std::map<int, std::size_t> arriving;  // work needle -> loops the transfers bring
+    {
+      std::map<int, std::vector<int>> from;
+      for (const LoopMove& m : moves) {
+        auto& list = from[m.to];
+        if (std::find(list.begin(), list.end(), m.from) == list.end()) list.push_back(m.from);
+      }
+      for (const auto& [to, list] : from) {
+        for (int n : list) arriving[to] += front_[n].size();
+      }
+    }
+    std::vector<int> kept;  // tails left to be knit through
     for (int f : faces) {
-      for (int e : s_.faces[static_cast<std::size_t>(f)].out) drop_tail(needle(e));
+      const auto& out = s_.faces[static_cast<std::size_t>(f)].out;
+      for (std::size_t k = 0; k < out.size(); ++k) {
+        const int n = needle(out[k]);
+        const auto it = front_.find(n);
+        const std::size_t tail = it == front_.end() ? 0 : it->second.size();
+        const std::size_t cast_on = arriving.count(n) == 0 ? 1 : 0;  // its tuck
+        if (drop_tail(n, k == 0 && arriving[n] + tail + cast_on <= kMaxLoops)) kept.push_back(n);
+      }
     }
     std::map<int, bool> moving;
     for (const LoopMove& m : moves) moving[m.from] = m.from != m.to;
-    const auto plan = schoolbus(
-        moves,
-        [&](int n) {
-          auto it = front_.find(n);
-          if (it == front_.end() || it->second.empty()) return false;
-          auto mv = moving.find(n);
-          return mv == moving.end() || !mv->second;
-        },
-        8);
+    const auto plan_transfers = [&] {
+      return schoolbus(
+          moves,
+          [&](int n) {
+            auto it = front_.find(n);
+            if (it == front_.end() || it->second.empty()) return false;
+            auto mv = moving.find(n);
+            return mv == moving.end() || !mv->second;
+          },
+          8);
+    };
+    // No needle may end up with more loops than it holds (V037). A kept
+    // tail occupies its needle, so a far-travelling loop may find no stop
+    // on its way, or a decrease no room: then the kept tails are dropped
+    // after all (V053) and the transfers planned without them.
+    std::vector<int> knit_first;
+    std::vector<Transfer> plan;
+    try {
+      knit_first = consolidation(moves);
+      plan = plan_transfers();
+    } catch (const std::logic_error&) {
+      if (kept.empty()) throw;
+      for (int n : kept) drop_tail(n, false);
+      knit_first = consolidation(moves);
+      plan = plan_transfers();
+    }
+    knit_stacks(knit_first);
+
+    // Yarn: start the row on the side nearer the carrier; cut and bring the
+    // yarn in again rather than float far.
+    int dir = +1;
+    if (in_ && std::abs(carrier_at_ - right) < std::abs(carrier_at_ - left)) dir = -1;
+    const int start = dir > 0 ? left : right;
+    cut_yarn_if_far(start);
+    std::vector<int> order(faces.begin(), faces.end());  // in pass A's direction
+    if (dir < 0) std::reverse(order.begin(), order.end());
     end_pass();
     for (const Transfer& t : plan) {
       rack(t.racking);
@@ -310,7 +415,7 @@ class Emitter {
       const FaceLinks& fl = s_.faces[static_cast<std::size_t>(f)];
       auto& loops = front_[work(f)];
       for (int t : loops) {
-        if (std::find(fl.in.begin(), fl.in.end(), t) == fl.in.end())
+        if (t != kTail && std::find(fl.in.begin(), fl.in.end(), t) == fl.in.end())
           throw std::logic_error("row " + std::to_string(r) + ": needle f" +
                                  std::to_string(work(f)) + " of face " + std::to_string(f) +
                                  " holds a loop that is not the face's (token " +
@@ -330,7 +435,9 @@ class Emitter {
     std::vector<int> cast;
     for (int f : order) {
       const FaceLinks& fl = s_.faces[static_cast<std::size_t>(f)];
-      if (std::any_of(fl.in.begin(), fl.in.end(), [&](int e) { return !loop_below(e); }))
+      // A face that some loop from below reaches is held by it: a tuck there
+      // would only add to the needle's stack.
+      if (std::none_of(fl.in.begin(), fl.in.end(), [&](int e) { return loop_below(e); }))
         cast.push_back(f);
     }
     if (!cast.empty()) {
@@ -397,7 +504,7 @@ class Emitter {
     // The new loops now belong to the course edges above.
     for (int f : faces) {
       const FaceLinks& fl = s_.faces[static_cast<std::size_t>(f)];
-      front_[work(f)].assign(1, fl.out[0]);
+      relabel(work(f), fl.out[0]);
       for (int e : fl.out) where_[e] = needle(e);
     }
 
@@ -449,7 +556,10 @@ class Emitter {
       chain_dir = -dir;
     }
     const auto move = [&](int from, int to) { move_loop(from, to); };
-    if (run.size() > 1) {
+    // A run of one needle is moved as it is, unless it holds a stack (a
+    // short row's stitch and the tuck of its turn): that is knit into one
+    // loop first, so the holder takes one loop per run.
+    if (run.size() > 1 || front_[needle(run[0])].size() > 1) {
       end_pass();
       cut_yarn_if_far(needle(run[0]));
       stitch("knit", chain_dir, 'f', needle(run[0]), kTail);
@@ -470,7 +580,7 @@ class Emitter {
         parked = parking_needle(last, row_index_, away);
       }
       if (parked != last) move(last, parked);
-      front_[parked].assign(1, kTail);
+      relabel(parked, kTail);
       return;
     }
     move(last, needle(holder));

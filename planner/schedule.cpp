@@ -526,39 +526,102 @@ std::vector<int> random_patch_order(const Schedule& s, std::uint64_t seed, std::
   return order;
 }
 
-std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::vector<int>& order) {
+std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::vector<int>& order,
+                                                int max_shift, std::vector<int>* patch_shift) {
   // §7.3: knit the rows patch by patch on a needle bed that keeps every loop
   // whose consumer is not knit yet. A row that needs a needle holding a loop
   // meant for another row overlaps it: cut the rows that loop joins.
+  if (s.edges.empty()) return {};
   int lo = 1 << 30, hi = -(1 << 30);
   for (const CourseEdge& e : s.edges) {
     lo = std::min(lo, e.needle);
     hi = std::max(hi, e.needle);
   }
-  if (s.edges.empty()) return {};
+  max_shift = std::max(0, max_shift);
+  lo -= max_shift;
+  hi += max_shift;
+  std::vector<int> shift(s.patches.size(), 0);
   std::vector<std::vector<int>> held(static_cast<std::size_t>(hi - lo + 1));
   std::vector<std::pair<int, int>> cuts;
   auto row_of = [&](int f) { return s.face_row[static_cast<std::size_t>(f)]; };
   auto is_cut = [&](int a, int b) {
     return std::find(cuts.begin(), cuts.end(), std::make_pair(a, b)) != cuts.end();
   };
-  for (int p : order) {
+  // Where edge e's loop sits: its needle, moved with the patch that makes it
+  // (or, cast on, with the patch that knits it).
+  auto owner = [&](const CourseEdge& ce) {
+    return s.rows[static_cast<std::size_t>(row_of(ce.lower != kNone ? ce.lower : ce.upper))].patch;
+  };
+  auto needle_of = [&](int e) {
+    const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
+    return ce.needle + shift[static_cast<std::size_t>(owner(ce))];
+  };
+  // The needles row r needs: its top needles and those its loops come from.
+  auto span = [&](int r, int& rlo, int& rhi) {
+    rlo = 1 << 30;
+    rhi = -(1 << 30);
+    for (int f : s.rows[static_cast<std::size_t>(r)].faces) {
+      const FaceLinks& fl = s.faces[static_cast<std::size_t>(f)];
+      for (int e : fl.out) {
+        rlo = std::min(rlo, needle_of(e));
+        rhi = std::max(rhi, needle_of(e));
+      }
+      for (int e : fl.in) {
+        const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
+        if (ce.lower == kNone || is_cut(row_of(ce.lower), r)) continue;
+        rlo = std::min(rlo, needle_of(e));
+        rhi = std::max(rhi, needle_of(e));
+      }
+    }
+  };
+  // Each row's place in its patch (rows of a patch are knit in that order).
+  std::vector<int> place(s.rows.size(), 0);
+  for (const Patch& patch : s.patches) {
+    for (std::size_t i = 0; i < patch.rows.size(); ++i)
+      place[static_cast<std::size_t>(patch.rows[i])] = static_cast<int>(i);
+  }
+  // The row pairs whose loops, held now, the rows of patch p would cover
+  // (a loop for a row of p that is knit by then is not in the way).
+  std::vector<std::pair<int, int>> covered;
+  auto count_covered = [&](int p) {
+    covered.clear();
     for (int r : s.patches[static_cast<std::size_t>(p)].rows) {
-      const Row& row = s.rows[static_cast<std::size_t>(r)];
-      int rlo = 1 << 30, rhi = -(1 << 30);
-      for (int f : row.faces) {
-        const FaceLinks& fl = s.faces[static_cast<std::size_t>(f)];
-        for (int e : fl.out) {
-          rlo = std::min(rlo, s.edges[static_cast<std::size_t>(e)].needle);
-          rhi = std::max(rhi, s.edges[static_cast<std::size_t>(e)].needle);
-        }
-        for (int e : fl.in) {
+      int rlo = 0, rhi = 0;
+      span(r, rlo, rhi);
+      for (int n = rlo; n <= rhi; ++n) {
+        for (int e : held[static_cast<std::size_t>(n - lo)]) {
           const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
-          if (ce.lower == kNone || is_cut(row_of(ce.lower), r)) continue;
-          rlo = std::min(rlo, ce.needle);
-          rhi = std::max(rhi, ce.needle);
+          const int b = row_of(ce.upper);
+          if (s.rows[static_cast<std::size_t>(b)].patch == p &&
+              place[static_cast<std::size_t>(b)] <= place[static_cast<std::size_t>(r)])
+            continue;
+          covered.emplace_back(row_of(ce.lower), b);
         }
       }
+    }
+    std::sort(covered.begin(), covered.end());
+    return static_cast<int>(std::unique(covered.begin(), covered.end()) - covered.begin());
+  };
+  for (int p : order) {
+    // A patch that would cover loops held for other rows is moved sideways
+    // as a whole (Fig. 9c, but by one transfer at the patch's start rather
+    // than one needle per row): by the fewest needles, within
+    // ±max_shift, that leaves the fewest row pairs to cut.
+    const auto& rows = s.patches[static_cast<std::size_t>(p)].rows;
+    int best = 0, best_count = count_covered(p);
+    for (int d = 1; d <= 2 * max_shift && best_count > 0; ++d) {
+      shift[static_cast<std::size_t>(p)] = d % 2 == 1 ? (d + 1) / 2 : -(d / 2);
+      const int c = count_covered(p);
+      if (c < best_count) {
+        best = shift[static_cast<std::size_t>(p)];
+        best_count = c;
+      }
+    }
+    shift[static_cast<std::size_t>(p)] = best;
+    for (int r : rows) {
+      const Row& row = s.rows[static_cast<std::size_t>(r)];
+      int rlo = 0, rhi = 0;
+      span(r, rlo, rhi);
       for (int n = rlo; n <= rhi; ++n) {
         auto& bucket = held[static_cast<std::size_t>(n - lo)];
         for (std::size_t k = 0; k < bucket.size(); ++k) {
@@ -571,7 +634,7 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
             for (int e : s.faces[static_cast<std::size_t>(f)].out) {
               const CourseEdge& c2 = s.edges[static_cast<std::size_t>(e)];
               if (c2.upper == kNone || row_of(c2.upper) != b) continue;
-              auto& other = held[static_cast<std::size_t>(c2.needle - lo)];
+              auto& other = held[static_cast<std::size_t>(needle_of(e) - lo)];
               other.erase(std::remove(other.begin(), other.end(), e), other.end());
             }
           }
@@ -583,17 +646,18 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
         for (int e : fl.in) {
           const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
           if (ce.lower == kNone) continue;
-          auto& bucket = held[static_cast<std::size_t>(ce.needle - lo)];
+          auto& bucket = held[static_cast<std::size_t>(needle_of(e) - lo)];
           bucket.erase(std::remove(bucket.begin(), bucket.end(), e), bucket.end());
         }
         for (int e : fl.out) {
           const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
           if (ce.upper == kNone) continue;
-          held[static_cast<std::size_t>(ce.needle - lo)].push_back(e);
+          held[static_cast<std::size_t>(needle_of(e) - lo)].push_back(e);
         }
       }
     }
   }
+  if (patch_shift != nullptr) *patch_shift = std::move(shift);
   return cuts;
 }
 
@@ -619,7 +683,8 @@ void choose_order(Schedule& s, const ScheduleParams& params) {
       const std::uint64_t t = next.fetch_add(1);
       if (t >= limit) break;
       const auto order = random_patch_order(s, params.seed, t);
-      mine.push_back({t, static_cast<int>(simulate_order(s, order).size())});
+      mine.push_back(
+          {t, static_cast<int>(simulate_order(s, order, params.max_patch_shift).size())});
     }
     std::lock_guard<std::mutex> lock(mutex);
     results.insert(results.end(), mine.begin(), mine.end());
@@ -636,8 +701,16 @@ void choose_order(Schedule& s, const ScheduleParams& params) {
                        [](const TrialResult& a, const TrialResult& b) { return a.cuts < b.cuts; });
   s.best_trial = best->trial;
   s.patch_order = random_patch_order(s, params.seed, best->trial);
-  s.cut_rows = simulate_order(s, s.patch_order);
+  std::vector<int> shift;
+  s.cut_rows = simulate_order(s, s.patch_order, params.max_patch_shift, &shift);
   s.cuts = static_cast<int>(s.cut_rows.size());
+  s.patch_shift = shift;
+  // The kept order's patch shifts become the needles the emitter uses.
+  for (CourseEdge& e : s.edges) {
+    const int f = e.lower != kNone ? e.lower : e.upper;
+    e.needle += shift[static_cast<std::size_t>(
+        s.rows[static_cast<std::size_t>(s.face_row[static_cast<std::size_t>(f)])].patch)];
+  }
   for (CourseEdge& e : s.edges) {
     if (e.lower == kNone || e.upper == kNone) continue;
     const std::pair<int, int> rows{s.face_row[static_cast<std::size_t>(e.lower)],

@@ -35,6 +35,10 @@ class ScheduleError : public std::runtime_error {
 
 inline constexpr int kNone = -1;
 
+// §7.3: the furthest (in needles) the order simulation moves a patch
+// sideways, by default, to keep it clear of loops held for other rows.
+inline constexpr int kMaxPatchShift = 4;
+
 // One loop-carrying course edge of the stitch mesh: made by `lower` (its
 // CourseOut side), knit through by `upper` (its CourseIn side). kNone on a
 // side means the edge is on the mesh boundary there: cast on below, bound off
@@ -69,10 +73,11 @@ struct TrialResult {
 };
 
 struct ScheduleParams {
-  int trials = 100;          // random knitting orders tried (§7.3)
-  double time_budget_s = 0;  // > 0: try orders until this much time has passed instead
-  std::uint64_t seed = 1;    // every random choice derives from it and the trial number
-  int threads = 0;           // 0: all cores
+  int trials = 100;                      // random knitting orders tried (§7.3)
+  double time_budget_s = 0;              // > 0: try orders until this much time has passed instead
+  std::uint64_t seed = 1;                // every random choice derives from it and the trial number
+  int threads = 0;                       // 0: all cores
+  int max_patch_shift = kMaxPatchShift;  // 0: patches stay where §7.2 put them
 };
 
 struct Piece {
@@ -97,6 +102,7 @@ struct Schedule {
   std::vector<int> row_topo_index;
   std::vector<Patch> patches;
   std::vector<int> patch_order;     // §7.3: the order kept
+  std::vector<int> patch_shift;     // §7.3: needles each patch was moved (already in the edges)
   std::vector<TrialResult> trials;  // every order tried, in trial order
   std::uint64_t best_trial = 0;
   int cuts = 0;                               // cuts of the kept order (row pairs separated)
@@ -117,9 +123,15 @@ void build_patches(Schedule& schedule);
 void assign_needles(const StitchMesh& mesh, Schedule& schedule);
 
 // §7.3: simulate one order; returns the row pairs that must be cut. `order`
-// is a topological order of the patches.
+// is a topological order of the patches. A patch about to be knit over
+// loops held for other rows is first moved sideways by the fewest needles
+// (within ±max_shift) that leaves the fewest row pairs to cut; the shift
+// per patch is stored in `patch_shift` when given (edges' needles are not
+// changed).
 std::vector<std::pair<int, int>> simulate_order(const Schedule& schedule,
-                                                const std::vector<int>& order);
+                                                const std::vector<int>& order,
+                                                int max_shift = kMaxPatchShift,
+                                                std::vector<int>* patch_shift = nullptr);
 
 // §7.3: a random topological order of the patches for `trial`.
 std::vector<int> random_patch_order(const Schedule& schedule, std::uint64_t seed,

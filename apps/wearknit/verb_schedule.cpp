@@ -3,6 +3,7 @@
 // pieces/piece-N.k and its bed view pieces/piece-N.svg are written, the
 // scheduling cuts go into cuts.json and the figures (time estimates from the
 // VM) into report.json (both merged with what is there).
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -51,6 +52,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   std::string pattern_name = "plain";
   std::uint64_t seed = 1;
   int threads = 0;
+  int max_shift = planner::kMaxPatchShift;
   std::string format_name;
   po::options_description options("options");
   options.add_options()("dir", po::value<std::string>(&dir)->required(),
@@ -64,6 +66,8 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
                                        "random seed")(
       "threads", po::value<int>(&threads)->default_value(0),
       "threads for the trials (0: all cores); results depend only on the seed and trials")(
+      "max-shift", po::value<int>(&max_shift)->default_value(planner::kMaxPatchShift),
+      "needles a patch may be moved sideways to clear held loops (0 to 8)")(
       "format", po::value<std::string>(&format_name)->default_value("text"),
       "diagnostics as text (stderr) or json (stdout)")("json", "same as --format json")(
       "quiet,q", "print nothing on success");
@@ -86,6 +90,10 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   }
   if (trials < 1) {
     context.err << "wearknit schedule: --trials must be at least 1\n";
+    return kExitUsage;
+  }
+  if (max_shift < 0 || max_shift > 8) {
+    context.err << "wearknit schedule: --max-shift takes 0 to 8 (the racking limit)\n";
     return kExitUsage;
   }
   planner::EmitParams emit;
@@ -124,6 +132,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   params.time_budget_s = values.count("time-budget") ? time_budget : 0;
   params.seed = seed;
   params.threads = threads;
+  params.max_patch_shift = max_shift;
   planner::Schedule schedule;
   std::vector<planner::EmittedPiece> pieces;
   try {
@@ -299,6 +308,9 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
       {"cuts_per_trial", trials_json},
       {"best_trial", schedule.best_trial},
       {"cuts", schedule.cuts},
+      {"max_shift", max_shift},
+      {"patches_moved", std::count_if(schedule.patch_shift.begin(), schedule.patch_shift.end(),
+                                      [](int shift) { return shift != 0; })},
       {"rows", schedule.rows.size()},
       {"patches", schedule.patches.size()},
       {"wale_seams", schedule.wale_seams.size()},

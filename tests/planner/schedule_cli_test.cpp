@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "knitout/parser.hpp"
+#include "planner/schedule.hpp"
 #include "planner/stitch_mesh.hpp"
 #include "tests/planner/bed_check.hpp"
 #include "tests/planner/schedule_fixtures.hpp"
@@ -64,7 +65,7 @@ TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
 }
 
 TEST(ScheduleCliTest, CrossingBranchesGetASewCutAndTwoPieces) {
-  const fs::path dir = plan_folder(fixtures::crossing_branches(12, 3, 10), "sched-x");
+  const fs::path dir = plan_folder(fixtures::crossing_branches(12, 3, 14), "sched-x");
   const auto result =
       wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 8 --pattern seed");
   ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -132,6 +133,29 @@ TEST(ScheduleCliTest, TrialsAndTimeBudgetExcludeEachOther) {
       wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 3 --time-budget 1");
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(result.err, "wearknit schedule: give --trials or --time-budget, not both\n");
+}
+
+TEST(ScheduleCliTest, MaxShiftBeyondTheRackingLimitIsAUsageError) {
+  const fs::path dir = plan_folder(fixtures::rectangle(3, 2), "sched-shift");
+  const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --max-shift 9");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.err, "wearknit schedule: --max-shift takes 0 to 8 (the racking limit)\n");
+}
+
+TEST(ScheduleCliTest, MaxShiftIsReported) {
+  const fs::path dir = plan_folder(fixtures::crossing_branches(12, 3, 10), "sched-shift-ok");
+  const auto moved = wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 8 -q");
+  ASSERT_EQ(moved.exit_code, 0) << moved.err;
+  json report = json::parse(wearknit::test::read_file(dir / "report.json"));
+  EXPECT_EQ(report["schedule"]["max_shift"], kMaxPatchShift);
+  EXPECT_EQ(report["schedule"]["patches_moved"], 1);
+  EXPECT_EQ(report["schedule"]["cuts"], 0);
+  const auto fixed =
+      wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 8 --max-shift 0 -q");
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
+  report = json::parse(wearknit::test::read_file(dir / "report.json"));
+  EXPECT_EQ(report["schedule"]["patches_moved"], 0);
+  EXPECT_EQ(report["schedule"]["cuts"], 1);
 }
 
 TEST(ScheduleCliTest, TimeBudgetAloneIsAccepted) {

@@ -135,6 +135,31 @@ inline StitchMesh rectangle(int width, int height) {
   return b.mesh();
 }
 
+// A fan of decreases onto one needle (the situation of anchor's stitch mesh,
+// V037): a short row [triangle, increase, triangle] whose triangle ends are
+// bound off onto the increase's two loops (the far triangle holds two loops,
+// its stitch and the tuck of the turn), then a decrease joins those two
+// loops. Stacked as they come, the decrease's needle would hold 2 + 3 loops.
+inline StitchMesh decrease_fan(int rows_above) {
+  Builder b(3);
+  b.add_row(0, {FaceSpec{1, 1}, FaceSpec{1, 2}, FaceSpec{1, 1}}, true, true);
+  b.add_row(1, {FaceSpec{2, 1}});
+  for (int r = 0; r < rows_above; ++r) b.add_row(1, knits(1));
+  return b.mesh();
+}
+
+// A decrease over two loops that each hold a stack: the far triangle of a
+// short row (its stitch, the tuck of its turn and the tail of the short
+// row's bound-off stitches: three loops) and the loop beside it, which took
+// the tail of the first row's bound-off end (two loops).
+inline StitchMesh stacked_decrease(int rows_above) {
+  Builder b(6);
+  b.add_row(0, {FaceSpec{}, FaceSpec{}, FaceSpec{}, FaceSpec{}}, true, true);
+  b.add_row(3, {FaceSpec{2, 1}});
+  for (int r = 0; r < rows_above; ++r) b.add_row(3, knits(1));
+  return b.mesh();
+}
+
 // A trapezoid narrowing by a decrease at both ends of every other row.
 inline StitchMesh trapezoid(int width, int height) {
   Builder b(width);

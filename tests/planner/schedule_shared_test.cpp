@@ -47,9 +47,7 @@ namespace fs = std::filesystem;
 
 // Stitch meshes that the scheduler does not knit correctly yet, with the
 // failure they show.
-const std::map<std::string, std::string> kScheduleFailures = {
-    {"anchor", "piece 33 of 200 stacks 5 loops on one needle (V037)"},
-};
+const std::map<std::string, std::string> kScheduleFailures = {};
 
 // Every .obj of ../shared/meshes, by name; empty without the shared folder
 // (each test then skips visibly through WEARKNIT_REQUIRE_SHARED).

@@ -77,7 +77,9 @@ TEST(ScheduleTest, YShapeSplitsIntoThreePatchesAndNeedsNoCut) {
 }
 
 TEST(ScheduleTest, CrossingBranchesNeedOneCutWhateverTheOrder) {
-  const Schedule s = run(fx::crossing_branches(12, 3, 10), 30);
+  // Each branch widens 14 needles over the other's base: further than a
+  // patch may be moved (kMaxPatchShift), so every order needs a cut.
+  const Schedule s = run(fx::crossing_branches(12, 3, 14), 30);
   ASSERT_EQ(s.patches.size(), 3u);
   ASSERT_EQ(s.trials.size(), 30u);
   for (const TrialResult& t : s.trials) EXPECT_GE(t.cuts, 1) << "trial " << t.trial;
@@ -87,6 +89,43 @@ TEST(ScheduleTest, CrossingBranchesNeedOneCutWhateverTheOrder) {
   EXPECT_EQ(s.rows[static_cast<std::size_t>(s.cut_rows[0].first)].patch, s.patch_order[0]);
   EXPECT_EQ(s.rows[static_cast<std::size_t>(s.cut_rows[0].second)].patch, s.patch_order[2]);
   EXPECT_EQ(s.pieces.size(), 2u);
+}
+
+TEST(ScheduleTest, BranchesCrossingWithinTheShiftReachAreMovedApartNotCut) {
+  // The same crossing, 10 rows high: the branch knit second covers the
+  // loops held for the other unless it is moved sideways; moving it by at
+  // most kMaxPatchShift needles clears them, so no cut is needed (§7.3,
+  // Fig. 9c by one transfer at the patch's start).
+  const StitchMesh mesh = fx::crossing_branches(12, 3, 10);
+  const Schedule s = run(mesh, 30);
+  ASSERT_EQ(s.patches.size(), 3u);
+  EXPECT_EQ(s.cuts, 0);
+  EXPECT_EQ(s.pieces.size(), 1u);
+  ASSERT_EQ(s.patch_shift.size(), 3u);
+  int moved = 0;
+  for (int shift : s.patch_shift) {
+    EXPECT_LE(std::abs(shift), kMaxPatchShift);
+    moved += shift != 0 ? 1 : 0;
+  }
+  EXPECT_EQ(moved, 1);
+  // Without the move, the order kept would cover a held loop.
+  Schedule unmoved = s;
+  for (CourseEdge& e : unmoved.edges) {
+    const int f = e.lower != kNone ? e.lower : e.upper;
+    e.needle -= s.patch_shift[static_cast<std::size_t>(
+        s.rows[static_cast<std::size_t>(s.face_row[static_cast<std::size_t>(f)])].patch)];
+  }
+  std::vector<int> shifts;
+  EXPECT_EQ(simulate_order(unmoved, s.patch_order, kMaxPatchShift, &shifts).size(), 0u);
+  EXPECT_EQ(shifts, s.patch_shift);
+  EXPECT_EQ(simulate_order(unmoved, s.patch_order, 0).size(), 1u);
+  // With moves switched off the scheduler cuts, as before.
+  ScheduleParams fixed;
+  fixed.trials = 30;
+  fixed.max_patch_shift = 0;
+  EXPECT_GE(schedule(mesh, fixed).cuts, 1);
+  // The moved needles are the ones the emitter knits on: every piece passes
+  // the bed checks ("crossing-branches" below and in schedule_vm_test).
 }
 
 TEST(ScheduleTest, SameSeedSameResultWhateverTheThreads) {
@@ -312,7 +351,8 @@ std::vector<Case> cases() {
           {"short-rows-one-side", fx::short_rows(12, 3, false)},
           {"short-rows-both-sides", fx::short_rows(14, 3, true)},
           {"y-shape", fx::y_shape(14, 3, 5, 4)},
-          {"crossing-branches", fx::crossing_branches(12, 3, 10)}};
+          {"crossing-branches", fx::crossing_branches(12, 3, 10)},
+          {"crossing-branches-cut", fx::crossing_branches(12, 3, 14)}};
 }
 
 int subdivided_faces(const StitchMesh& mesh, const Schedule& s, const Piece& piece) {
@@ -392,14 +432,25 @@ TEST(KnitoutEmitTest, YarnVisitsOneLoopPerSubdividedFaceInTracedOrder) {
 TEST(KnitoutEmitTest, RandomShapesGiveValidKnitout) {
   // 150 fixed-seed random shapes (shaping, short rows, branches), both
   // patterns: every piece passes the bed checker and has one knit per
-  // subdivided face.
-  int pieces = 0, cut = 0, branched = 0;
+  // subdivided face. Every other shape is scheduled without moving patches
+  // sideways (with moves none of these shapes needs a cut), so cut pieces
+  // are knit too.
+  int pieces = 0, cut = 0, branched = 0, moved = 0;
   for (std::uint32_t seed = 1; seed <= 150; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const StitchMesh mesh = fx::random_shape(seed);
+    ScheduleParams schedule_params;
+    schedule_params.trials = 10;
+    schedule_params.seed = seed;
+    schedule_params.threads = 1;
+    schedule_params.max_patch_shift = seed % 2 == 0 ? 0 : kMaxPatchShift;
     Schedule s;
-    ASSERT_NO_THROW(s = run(mesh, 10, seed, 1));
+    ASSERT_NO_THROW(s = schedule(mesh, schedule_params));
     cut += s.cuts > 0 ? 1 : 0;
+    moved += std::any_of(s.patch_shift.begin(), s.patch_shift.end(),
+                         [](int shift) { return shift != 0; })
+                 ? 1
+                 : 0;
     branched += s.patches.size() > 1 ? 1 : 0;
     for (StitchPattern pattern : {StitchPattern::Plain, StitchPattern::Seed}) {
       EmitParams params;
@@ -419,7 +470,44 @@ TEST(KnitoutEmitTest, RandomShapesGiveValidKnitout) {
   // The cases exercise branching and cuts, not only plain sheets.
   EXPECT_GT(branched, 100);
   EXPECT_GT(cut, 0);
+  EXPECT_GT(moved, 0);
   EXPECT_GT(pieces, 300);
+}
+
+TEST(KnitoutEmitTest, AFanOfDecreasesNeverStacksMoreThanFourLoops) {
+  // Bind-off tails joining the loops a decrease then stacks (anchor's V037):
+  // every needle holds at most four loops, in both patterns, and every
+  // subdivided face is still knit once.
+  const StitchMesh mesh = fx::decrease_fan(2);
+  const Schedule s = run(mesh);
+  ASSERT_EQ(s.pieces.size(), 1u);
+  for (StitchPattern pattern : {StitchPattern::Plain, StitchPattern::Seed}) {
+    SCOPED_TRACE(std::string(stitch_pattern_name(pattern)));
+    EmitParams params;
+    params.pattern = pattern;
+    EmittedPiece piece;
+    ASSERT_NO_THROW(piece = emit_piece(mesh, s, 0, params));
+    knitout::DiagnosticSink sink;
+    const auto check = testing::check_bed(knitout::parse_string(piece.knitout, "fan", sink));
+    ASSERT_FALSE(sink.has_errors());
+    EXPECT_TRUE(check.errors.empty()) << check.errors.front() << "\n" << piece.knitout;
+    EXPECT_EQ(static_cast<int>(piece.trace.size()), subdivided_faces(mesh, s, s.pieces[0]));
+  }
+}
+
+TEST(KnitoutEmitTest, ADecreaseOfTwoStacksKnitsTheFullerOneFirst) {
+  // 3 + 2 loops would meet on the decrease's needle: the stack of three is
+  // knit into one loop before the transfers, so the needle takes three.
+  const StitchMesh mesh = fx::stacked_decrease(2);
+  const Schedule s = run(mesh);
+  ASSERT_EQ(s.pieces.size(), 1u);
+  EmittedPiece piece;
+  ASSERT_NO_THROW(piece = emit_piece(mesh, s, 0, EmitParams{}));
+  knitout::DiagnosticSink sink;
+  const auto check = testing::check_bed(knitout::parse_string(piece.knitout, "stacks", sink));
+  ASSERT_FALSE(sink.has_errors());
+  EXPECT_TRUE(check.errors.empty()) << check.errors.front();
+  EXPECT_EQ(static_cast<int>(piece.trace.size()), subdivided_faces(mesh, s, s.pieces[0]));
 }
 
 TEST(KnitoutEmitTest, CarrierComesInWithTheHookAndLeavesWithIt) {

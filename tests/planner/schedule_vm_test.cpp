@@ -27,7 +27,8 @@ TEST(ScheduleVmTest, EveryPieceValidatesAndKnitsItsFacesInTracedOrder) {
       {"short-rows-one-side", fx::short_rows(12, 3, false)},
       {"short-rows-both-sides", fx::short_rows(14, 3, true)},
       {"y-shape", fx::y_shape(14, 3, 5, 4)},
-      {"crossing-branches", fx::crossing_branches(12, 3, 10)}};
+      {"crossing-branches", fx::crossing_branches(12, 3, 10)},
+      {"crossing-branches-cut", fx::crossing_branches(12, 3, 14)}};
   for (std::uint32_t seed = 1; seed <= 40; ++seed) {
     shapes.emplace_back("random-" + std::to_string(seed), fx::random_shape(seed));
   }
