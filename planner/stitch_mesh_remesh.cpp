@@ -11,6 +11,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <queue>
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
@@ -244,6 +245,93 @@ Eigen::VectorXd row_levels(const LabelledDisc& disc, const std::vector<Triangle>
     out[i] = ((1 - f) * below[at(k)] + f * below[at(k + 1)]) / per_row;
   }
   return out;
+}
+
+// A row time with an interior extremum has closed level curves round it:
+// the band there is a strip with a hole, which no zip can fill. The
+// least-squares fit can make one even on consistent labels (its curl-free
+// part need not follow the labels' turning everywhere). This levels t so
+// that from every vertex a path runs down to the disc boundary on which t
+// never rises, and another on which t never falls: pits are filled to their
+// spill level and peaks cut to theirs (morphological reconstruction by
+// priority flood from the boundary, alternated until neither changes t).
+// Then every component of {t < c} and of {t > c} reaches the boundary, so
+// no band has a hole. Returns how many vertices changed.
+int level_interior_extrema(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                           Eigen::VectorXd& t) {
+  const auto n = static_cast<std::size_t>(t.size());
+  std::vector<std::vector<int>> adjacent(n);
+  for (const Triangle& tri : tris) {
+    for (int i = 0; i < 3; ++i) {
+      adjacent[at(tri.v[at(i)])].push_back(tri.v[at((i + 1) % 3)]);
+      adjacent[at(tri.v[at((i + 1) % 3)])].push_back(tri.v[at(i)]);
+    }
+  }
+  std::unordered_set<std::uint64_t> sides;
+  for (const std::vector<int>& face : disc.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i)
+      sides.insert(key(face[i], face[(i + 1) % face.size()]));
+  }
+  std::vector<int> boundary;
+  {
+    std::vector<bool> on(n, false);
+    for (const std::vector<int>& face : disc.faces) {
+      for (std::size_t i = 0; i < face.size(); ++i) {
+        const int a = face[i];
+        const int b = face[(i + 1) % face.size()];
+        if (sides.count(key(b, a))) continue;
+        on[at(a)] = on[at(b)] = true;
+      }
+    }
+    for (std::size_t v = 0; v < n; ++v) {
+      if (on[v]) boundary.push_back(static_cast<int>(v));
+    }
+  }
+  // One flood: `fill` raises pits (lowest first), otherwise peaks are cut
+  // (highest first). Ties are taken by vertex index, so the result does not
+  // depend on the heap's implementation.
+  auto flood = [&](bool fill) {
+    using Entry = std::pair<double, int>;
+    auto later = [fill](const Entry& a, const Entry& b) {
+      if (a.first != b.first) return fill ? a.first > b.first : a.first < b.first;
+      return a.second > b.second;
+    };
+    std::priority_queue<Entry, std::vector<Entry>, decltype(later)> queue(later);
+    std::vector<bool> closed(n, false);
+    for (int v : boundary) {
+      closed[at(v)] = true;
+      queue.push({t[v], v});
+    }
+    int changed = 0;
+    while (!queue.empty()) {
+      const auto [value, v] = queue.top();
+      queue.pop();
+      for (int w : adjacent[at(v)]) {
+        if (closed[at(w)]) continue;
+        closed[at(w)] = true;
+        if (fill ? t[w] < value : t[w] > value) {
+          t[w] = value;
+          ++changed;
+        }
+        queue.push({t[w], w});
+      }
+    }
+    return changed;
+  };
+  const Eigen::VectorXd before = t;
+  // Filling never lowers and cutting never raises a value, and both are
+  // monotone, so the alternation converges (values are taken from a finite
+  // set); the bound only guards against a bug.
+  for (int round = 0; round < 1000; ++round) {
+    const int raised = flood(true);
+    const int lowered = flood(false);
+    if (raised == 0 && lowered == 0) break;
+    if (round == 999) throw std::logic_error("row time: levelling extrema does not converge");
+  }
+  int changed = 0;
+  for (std::size_t v = 0; v < n; ++v)
+    changed += t[static_cast<Eigen::Index>(v)] != before[static_cast<Eigen::Index>(v)] ? 1 : 0;
+  return changed;
 }
 
 // ---------------------------------------------------------------------------
@@ -1531,44 +1619,57 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   }
   AnisoRemeshResult result;
   std::vector<Triangle> tris = triangulate(disc);
-  const Eigen::VectorXd t = row_time(disc, tris, params);
+  Eigen::VectorXd t = row_time(disc, tris, params);
   result.stats.solve_seconds = seconds_since(start);
   int bands = 1;
-  const Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
-  result.stats.rows = bands;
-  const Pieces pieces = slice(disc, tris, rows, 1.0, bands);
-
-  // Strips: pieces of one band joined across their shared sides.
-  const int num_pieces = static_cast<int>(pieces.band.size());
-  std::vector<int> parent(at(num_pieces));
-  std::iota(parent.begin(), parent.end(), 0);
-  for (std::size_t h = 0; h < pieces.from.size(); ++h) {
-    const int tw = pieces.twin[h];
-    if (tw < 0 || pieces.level[h] >= 0) continue;
-    const int a = find(parent, pieces.piece[h]);
-    const int b = find(parent, pieces.piece[at(tw)]);
-    if (a != b) parent[at(std::max(a, b))] = std::min(a, b);
-  }
-  auto on_boundary = [&](int h) { return pieces.twin[at(h)] < 0 || pieces.level[at(h)] >= 0; };
+  Pieces pieces;
   std::map<int, std::vector<std::vector<int>>> loops;  // strip root -> boundary loops
-  std::vector<bool> visited(pieces.from.size(), false);
-  for (int h0 = 0; h0 < static_cast<int>(pieces.from.size()); ++h0) {
-    if (visited[at(h0)] || !on_boundary(h0)) continue;
-    std::vector<int> loop;
-    int h = h0;
-    do {
-      visited[at(h)] = true;
-      loop.push_back(h);
-      int c = pieces.next(h);
-      int guard = 0;
-      while (!on_boundary(c)) {
-        c = pieces.next(pieces.twin[at(c)]);
-        if (++guard > 100000) throw std::logic_error("stitch meshing: vertex walk does not end");
-      }
-      h = c;
-    } while (h != h0 && !visited[at(h)]);
-    if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
-    loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
+  std::vector<int> parent;
+  // Rows, pieces and strips from t. A strip with a hole (an interior
+  // extremum of t) makes the row time be levelled and the rows be placed
+  // again; a row time without one is used as fitted.
+  auto make_strips = [&] {
+    const Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
+    pieces = slice(disc, tris, rows, 1.0, bands);
+    // Strips: pieces of one band joined across their shared sides.
+    const int num_pieces = static_cast<int>(pieces.band.size());
+    parent.assign(at(num_pieces), 0);
+    std::iota(parent.begin(), parent.end(), 0);
+    for (std::size_t h = 0; h < pieces.from.size(); ++h) {
+      const int tw = pieces.twin[h];
+      if (tw < 0 || pieces.level[h] >= 0) continue;
+      const int a = find(parent, pieces.piece[h]);
+      const int b = find(parent, pieces.piece[at(tw)]);
+      if (a != b) parent[at(std::max(a, b))] = std::min(a, b);
+    }
+    auto on_boundary = [&](int h) { return pieces.twin[at(h)] < 0 || pieces.level[at(h)] >= 0; };
+    loops.clear();
+    std::vector<bool> visited(pieces.from.size(), false);
+    for (int h0 = 0; h0 < static_cast<int>(pieces.from.size()); ++h0) {
+      if (visited[at(h0)] || !on_boundary(h0)) continue;
+      std::vector<int> loop;
+      int h = h0;
+      do {
+        visited[at(h)] = true;
+        loop.push_back(h);
+        int c = pieces.next(h);
+        int guard = 0;
+        while (!on_boundary(c)) {
+          c = pieces.next(pieces.twin[at(c)]);
+          if (++guard > 100000) throw std::logic_error("stitch meshing: vertex walk does not end");
+        }
+        h = c;
+      } while (h != h0 && !visited[at(h)]);
+      if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
+      loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
+    }
+  };
+  make_strips();
+  const bool has_hole = std::any_of(loops.begin(), loops.end(),
+                                    [](const auto& entry) { return entry.second.size() > 1; });
+  if (has_hole) {
+    result.stats.row_time_levelled = level_interior_extrema(disc, tris, t);
+    make_strips();
   }
   Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   builder.mesh.course_mm = params.course_mm;

@@ -85,6 +85,9 @@ struct AnisoRemeshStats {
   // Sides of a level curve split after the row below was made (its knit
   // stitch there became an increase), because the row above needed more.
   int sides_split_below = 0;
+  // Vertices whose row time was levelled because the fitted one had an
+  // interior extremum (a strip with a hole); 0 when it had none.
+  int row_time_levelled = 0;
   double solve_seconds = 0;
   double total_seconds = 0;
 };

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "planner/stitch_mesh.hpp"
 #include "tests/planner/stitch_discs.hpp"
@@ -85,6 +86,58 @@ TEST(StitchMeshRemeshTest, MeshesAConeWithDecreases) {
 TEST(StitchMeshRemeshTest, MeshesAHemisphereCap) {
   expect_good_stitch_mesh(sd::hemisphere(20), sd::hemisphere_area(20), default_params(),
                           "hemisphere");
+}
+
+// A flat square whose wale direction is +y except in a central disc, where
+// it points away from the centre: the fitted row time has a pit there, and
+// the band round it would be a strip with a hole. The row time is levelled
+// (pits filled, peaks cut) and the rows placed again, so the stitch mesh is
+// still one valid disc with the input's boundary.
+LabelledDisc square_with_radial_centre(double side_mm, double radius_mm, int n) {
+  LabelledDisc disc = sd::rectangle(side_mm, side_mm, n, n);
+  const Eigen::Vector3d centre(side_mm / 2, side_mm / 2, 0.0);
+  for (std::size_t f = 0; f < disc.faces.size(); ++f) {
+    const std::vector<int>& face = disc.faces[f];
+    Eigen::Vector3d mid = Eigen::Vector3d::Zero();
+    for (int v : face) mid += disc.positions[static_cast<std::size_t>(v)] / 4.0;
+    const Eigen::Vector3d radial = mid - centre;
+    const Eigen::Vector3d wale =
+        radial.norm() < radius_mm ? Eigen::Vector3d(radial.normalized()) : Eigen::Vector3d::UnitY();
+    // The side most along `wale` is +v (1); the others follow round the face.
+    std::size_t k = 0;
+    double best = -2.0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const Eigen::Vector3d e = disc.positions[static_cast<std::size_t>(face[(i + 1) % 4])] -
+                                disc.positions[static_cast<std::size_t>(face[i])];
+      if (e.normalized().dot(wale) > best) {
+        best = e.normalized().dot(wale);
+        k = i;
+      }
+    }
+    for (std::size_t i = 0; i < 4; ++i) disc.directions[f][i] = static_cast<int>((i + 5 - k) % 4);
+  }
+  return disc;
+}
+
+TEST(StitchMeshRemeshTest, RowTimeWithAnInteriorPitIsLevelled) {
+  const LabelledDisc disc = square_with_radial_centre(60, 15, 30);
+  const AnisoRemeshResult result = remesh_anisotropic(disc, default_params());
+  EXPECT_GT(result.stats.row_time_levelled, 0);
+  for (const std::string& p : result.problems) ADD_FAILURE() << p;
+  EXPECT_TRUE(check(result.mesh).empty());
+  const StitchMeshFigures f = measure(result.mesh);
+  EXPECT_EQ(f.boundary_loops, 1);
+  EXPECT_EQ(f.euler_characteristic, 1);
+  EXPECT_LT(sd::farthest_boundary_vertex(disc, result.mesh), 1e-6 * 60);
+}
+
+// Its twin: the same square with +y everywhere has no pit, and the row
+// time is used as fitted.
+TEST(StitchMeshRemeshTest, RowTimeWithoutAnInteriorExtremumIsNotLevelled) {
+  const LabelledDisc disc = square_with_radial_centre(60, 0, 30);
+  const AnisoRemeshResult result = remesh_anisotropic(disc, default_params());
+  EXPECT_EQ(result.stats.row_time_levelled, 0);
+  EXPECT_TRUE(result.problems.empty());
 }
 
 }  // namespace
