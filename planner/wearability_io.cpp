@@ -175,21 +175,17 @@ std::optional<CoverMesh> read_cover_mesh(const PolygonMesh& cut_mesh, const nloh
   return mesh;
 }
 
-namespace {
-
-nlohmann::json trials_json(const TestResult& test) {
-  nlohmann::json trials = nlohmann::json::array();
-  for (const auto& t : test.trials) {
-    trials.push_back({{"seed", t.seed},
-                      {"success", t.success},
-                      {"steps", t.steps},
-                      {"stalled", t.stalled},
-                      {"min_distance", t.min_distance}});
+nlohmann::json trials_json(const std::vector<TrialOutcome>& trials) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& t : trials) {
+    list.push_back({{"seed", t.seed},
+                    {"success", t.success},
+                    {"steps", t.steps},
+                    {"stalled", t.stalled},
+                    {"min_distance", t.min_distance}});
   }
-  return trials;
+  return list;
 }
-
-}  // namespace
 
 void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study,
                    const WearabilityParams& params) {
@@ -207,7 +203,7 @@ void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study,
     nlohmann::json detail = {{"position", arc.position},
                              {"wearable_when_sewn", arc.test.wearable},
                              {"tested_with", arc.test.group - 1},
-                             {"trials", trials_json(arc.test)}};
+                             {"trials", trials_json(arc.test.trials)}};
     if (study.runs.size() > 1) detail["lace_probability"] = study.lace_probability[a];
     arcs[a]["wearability"] = detail;
   }
@@ -223,7 +219,7 @@ void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study,
       {"switch_steps", params.cloth.switch_steps},
   };
   if (!study.runs.empty()) {
-    summary["initial_trials"] = trials_json(study.runs[chosen >= 0 ? chosen : 0].initial);
+    summary["initial_trials"] = trials_json(study.runs[chosen >= 0 ? chosen : 0].initial.trials);
   }
   if (result != nullptr) {
     int sewn = 0;

@@ -47,6 +47,10 @@ std::optional<CoverMesh> read_cover_mesh(const PolygonMesh& cut_mesh, const nloh
                                          const std::string& cuts_source,
                                          knitout::DiagnosticSink& sink);
 
+// Trial records as cuts.json and report.json write them:
+// [{"seed", "success", "steps", "stalled", "min_distance"}, ...].
+nlohmann::json trials_json(const std::vector<TrialOutcome>& trials);
+
 // Adds the results to the cuts.json document (see the header comment).
 // `study` holds R runs; the labels are those of the first run.
 void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study, const WearabilityParams& params);

@@ -236,19 +236,11 @@ std::optional<std::uint64_t> CutFolderStudy::cut_seed() const {
 json attempts_json(const std::vector<CutAttempt>& attempts) {
   json list = json::array();
   for (const auto& a : attempts) {
-    json trials = json::array();
-    for (const auto& t : a.trials) {
-      trials.push_back({{"seed", t.seed},
-                        {"success", t.success},
-                        {"steps", t.steps},
-                        {"stalled", t.stalled},
-                        {"min_distance", t.min_distance}});
-    }
     json entry = {{"attempt", a.attempt},
                   {"cut_seed", a.cut_seed ? json(*a.cut_seed) : json(nullptr)},
                   {"arcs", a.arcs},
                   {"wearable", a.wearable},
-                  {"initial_trials", trials}};
+                  {"initial_trials", trials_json(a.trials)}};
     if (!a.failure.empty()) entry["failure"] = a.failure;
     list.push_back(entry);
   }
