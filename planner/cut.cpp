@@ -1,6 +1,7 @@
 #include "planner/cut.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <numeric>
 #include <queue>
@@ -202,9 +203,10 @@ std::vector<CutArc> find_arcs(const HalfedgeMesh& q, const FieldLabels& labels,
 
 }  // namespace
 
-FieldLabels label_field(const HalfedgeMesh& q) {
+FieldLabels label_field(const HalfedgeMesh& q, const VanishingRule& rule) {
   FieldLabels labels;
   labels.vanishing_corner.assign(at(q.num_faces()), -1);
+  std::vector<std::array<bool, 3>> allowed(at(q.num_faces()), {false, false, false});
   for (int f = 0; f < q.num_faces(); ++f) {
     const int n = q.degree(f);
     if (n == 4) continue;
@@ -215,14 +217,58 @@ FieldLabels label_field(const HalfedgeMesh& q) {
     // §4.1: the most acute corner of a triangle vanishes.
     int best = 0;
     double smallest = 10.0;
+    std::array<double, 3> angles{};
     for (int i = 0; i < 3; ++i) {
-      const double angle = q.corner_angle(q.face_start(f) + i);
-      if (angle < smallest) {
-        smallest = angle;
+      angles[at(i)] = q.corner_angle(q.face_start(f) + i);
+      if (angles[at(i)] < smallest) {
+        smallest = angles[at(i)];
         best = i;
       }
     }
     labels.vanishing_corner[at(f)] = best;
+    for (int i = 0; i < 3; ++i) {
+      allowed[at(f)][at(i)] = angles[at(i)] <= smallest + rule.tolerance_rad;
+    }
+  }
+  if (!rule.fewest_irregular) return labels_with_vanishing(q, std::move(labels.vanishing_corner));
+  // Corners around each vertex, not counting vanishing ones; a triangle moves
+  // its vanishing corner to another allowed corner when that brings its three
+  // vertices closer to four corners each (sum of |count - 4| over interior
+  // vertices), until no triangle can.
+  std::vector<int> count(at(q.num_vertices()), 0);
+  for (int h = 0; h < q.num_halfedges(); ++h) {
+    if (!is_vanishing(q, labels, h)) ++count[at(q.from(h))];
+  }
+  auto misfit = [&](int v) { return q.is_boundary_vertex(v) ? 0 : std::abs(count[at(v)] - 4); };
+  for (int sweep = 0; sweep < 100; ++sweep) {
+    bool moved = false;
+    for (int f = 0; f < q.num_faces(); ++f) {
+      if (q.degree(f) != 3) continue;
+      const int current = labels.vanishing_corner[at(f)];
+      const int from = q.from(q.face_start(f) + current);
+      int choice = current, choice_cost = 0;
+      for (int i = 0; i < 3; ++i) {
+        if (i == current || !allowed[at(f)][at(i)]) continue;
+        const int to = q.from(q.face_start(f) + i);
+        const int before = misfit(from) + misfit(to);
+        ++count[at(from)];
+        --count[at(to)];
+        const int change = misfit(from) + misfit(to) - before;
+        --count[at(from)];
+        ++count[at(to)];
+        if (change < choice_cost) {
+          choice = i;
+          choice_cost = change;
+        }
+      }
+      if (choice != current) {
+        ++count[at(from)];
+        --count[at(q.from(q.face_start(f) + choice))];
+        labels.vanishing_corner[at(f)] = choice;
+        moved = true;
+      }
+    }
+    if (!moved) break;
   }
   return labels_with_vanishing(q, std::move(labels.vanishing_corner));
 }
@@ -260,7 +306,7 @@ CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params) {
   const int nf = q.num_faces();
   const int nh = q.num_halfedges();
   if (nf == 0) throw std::logic_error("cut_surface: empty proxy");
-  cut.labels = label_field(q);
+  cut.labels = label_field(q, params.vanishing);
   const FieldLabels& labels = cut.labels;
 
   std::mt19937_64 rng(params.seed);

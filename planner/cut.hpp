@@ -34,7 +34,15 @@ struct FieldLabels {
   // around them exists, so they must end up on the cut.
   std::vector<int> singular_vertices;
 };
-FieldLabels label_field(const HalfedgeMesh& q);
+// How the vanishing corner of each triangle is chosen. §4.1 takes the most
+// acute corner. With `fewest_irregular` a triangle may instead vanish at any
+// corner at most `tolerance_rad` wider than its most acute one, chosen so
+// that fewer interior vertices are irregular (docs/cutting.md).
+struct VanishingRule {
+  bool fewest_irregular = false;
+  double tolerance_rad = 0.0;
+};
+FieldLabels label_field(const HalfedgeMesh& q, const VanishingRule& rule = {});
 // The same for given vanishing corners (as read back from labels.json).
 FieldLabels labels_with_vanishing(const HalfedgeMesh& q, std::vector<int> vanishing_corner);
 
@@ -47,6 +55,7 @@ struct CutParams {
   std::uint64_t seed = 1;
   double cs = 1000.0;  // §4.2 straightness weight (motorcycle-graph edges)
   double co = 1.0;     // §4.2 overlap weight
+  VanishingRule vanishing;
 };
 
 // A cut-arc: a straight sequence of cut edges of Q (§3, §4), as the path of

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <ostream>
 
 #include "knitout/output_file.hpp"
@@ -99,7 +100,12 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
             {"faces", cut.proxy.num_faces()},
             {"polygons_split", r.polygons_split},
             {"triangles_paired", r.triangles_paired}}},
-          {"params", {{"seed", r.params.seed}, {"cs", r.params.cs}, {"co", r.params.co}}},
+          {"params",
+           {{"seed", r.params.seed},
+            {"cs", r.params.cs},
+            {"co", r.params.co},
+            {"vanishing", r.params.vanishing.fewest_irregular ? "regular" : "acute"},
+            {"vanishing_slack_deg", r.params.vanishing.tolerance_rad * 180.0 / std::numbers::pi}}},
           {"irregular_vertices", cut.labels.irregular_vertices},
           {"irregular_vertex_count", s.irregular_vertices},
           {"cut_edges", s.cut_edges},

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <numbers>
 #include <ostream>
 
 #include "apps/wearknit/cli.hpp"
@@ -23,6 +24,8 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
   std::string format_name;
   double scale = 1.0;
   double proxy_edge_mm = 0.0;
+  std::string vanishing = "acute";
+  double vanishing_slack_deg = 30.0;
   std::uint64_t seed = 1;
   int picture_px = 600;
   planner::CutParams params;
@@ -35,6 +38,11 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
       "cs", po::value<double>(&params.cs)->default_value(1000.0),
       "straightness weight c_s (motorcycle-graph edges, §4.2)")(
       "co", po::value<double>(&params.co)->default_value(1.0), "overlap weight c_o (§4.2)")(
+      "vanishing", po::value<std::string>(&vanishing)->default_value("acute"),
+      "vanishing corner of each triangle: acute (its most acute corner, §4.1) or regular "
+      "(a corner within --vanishing-slack of it that leaves fewer irregular vertices)")(
+      "vanishing-slack", po::value<double>(&vanishing_slack_deg)->default_value(30.0),
+      "degrees a regular vanishing corner may be wider than the most acute one")(
       "units", po::value<std::string>(&units)->default_value("mm"),
       "unit of the file's coordinates: mm, cm or m")(
       "scale", po::value<double>(&scale)->default_value(1.0), "multiply coordinates by this")(
@@ -71,6 +79,16 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
     context.err << "wearknit cut: --proxy-edge-mm, --cs and --co must not be negative\n";
     return kExitUsage;
   }
+  if (vanishing != "acute" && vanishing != "regular") {
+    context.err << "wearknit cut: --vanishing takes acute or regular, not '" << vanishing << "'\n";
+    return kExitUsage;
+  }
+  if (!(vanishing_slack_deg >= 0.0) || vanishing_slack_deg > 180.0) {
+    context.err << "wearknit cut: --vanishing-slack must be between 0 and 180 degrees\n";
+    return kExitUsage;
+  }
+  params.vanishing.fewest_irregular = vanishing == "regular";
+  params.vanishing.tolerance_rad = vanishing_slack_deg * std::numbers::pi / 180.0;
   params.seed = seed;
 
   planner::CutReport report;

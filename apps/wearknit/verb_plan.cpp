@@ -48,6 +48,9 @@ int run_plan(const std::vector<std::string>& args, Context& context) {
   static const std::vector<Passed> kCut = {
       {"cs", "cs", "cut: straightness weight c_s (default 1000)"},
       {"co", "co", "cut: overlap weight c_o (default 1)"},
+      {"vanishing", "vanishing", "cut: vanishing corners, acute (§4.1) or regular (default acute)"},
+      {"vanishing-slack", "vanishing-slack",
+       "cut: degrees a regular vanishing corner may exceed the most acute (default 30)"},
       {"proxy-edge-mm", "proxy-edge-mm",
        "cut: proxy edge length for triangle input (default: "
        "about 3000 quads)"}};

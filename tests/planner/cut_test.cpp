@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <numbers>
 #include <set>
 
 #include "planner/cut_io.hpp"
@@ -15,12 +16,16 @@
 namespace planner {
 namespace {
 
-CutMesh cut_of(const SurfaceMesh& mesh, std::uint64_t seed = 1, double cs = 1000, double co = 1) {
+CutParams cut_params(std::uint64_t seed, double cs = 1000, double co = 1) {
   CutParams params;
   params.seed = seed;
   params.cs = cs;
   params.co = co;
-  return cut_surface(HalfedgeMesh(mesh), params);
+  return params;
+}
+
+CutMesh cut_of(const SurfaceMesh& mesh, std::uint64_t seed = 1, double cs = 1000, double co = 1) {
+  return cut_surface(HalfedgeMesh(mesh), cut_params(seed, cs, co));
 }
 
 // Q's vertices that lie on the boundary of the disc.
@@ -44,6 +49,61 @@ TEST(LabelsTest, VanishingCornerIsTheMostAcuteCornerOfATriangle) {
   EXPECT_EQ(halfedge_direction(q, labels, 0, 0), 0);
   EXPECT_EQ(halfedge_direction(q, labels, 0, 1), 1);
   EXPECT_EQ(halfedge_direction(q, labels, 0, 2), 3);  // turns by 2 only at the vanishing corner
+}
+
+// A 3 x 3 grid whose middle cell is two triangles split along the diagonal
+// a-c, with c pulled outwards so that both triangles are sharpest at c.
+SurfaceMesh grid_with_split_cell() {
+  SurfaceMesh mesh;
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) mesh.positions.push_back({double(x), double(y), 0.0});
+  }
+  auto id = [](int x, int y) { return y * 4 + x; };
+  mesh.positions[static_cast<std::size_t>(id(2, 2))] = {2.1, 2.1, 0.0};
+  for (int y = 0; y < 3; ++y) {
+    for (int x = 0; x < 3; ++x) {
+      if (x == 1 && y == 1) continue;
+      mesh.faces.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1), id(x, y + 1)});
+    }
+  }
+  mesh.faces.push_back({id(1, 1), id(2, 1), id(2, 2)});
+  mesh.faces.push_back({id(1, 1), id(2, 2), id(1, 2)});
+  return mesh;
+}
+
+TEST(LabelsTest, AcuteVanishingCornersCanLeaveAPairOfIrregularVertices) {
+  const HalfedgeMesh q(grid_with_split_cell());
+  const FieldLabels labels = label_field(q);
+  // Both triangles vanish at c = vertex 10: it keeps 3 corners, a = vertex 5 gets 5.
+  EXPECT_EQ(labels.irregular_vertices, (std::vector<int>{5, 10}));
+  EXPECT_EQ(labels.corner_count[5], 5);
+  EXPECT_EQ(labels.corner_count[10], 3);
+}
+
+TEST(LabelsTest, RegularVanishingCornersMakeTheSplitCellRegular) {
+  const HalfedgeMesh q(grid_with_split_cell());
+  VanishingRule rule;
+  rule.fewest_irregular = true;
+  rule.tolerance_rad = 10.0 * std::numbers::pi / 180.0;
+  const FieldLabels labels = label_field(q, rule);
+  EXPECT_TRUE(labels.irregular_vertices.empty());
+  // One triangle vanishes at a, the other at c.
+  auto vanishing_vertex = [&](int f) {
+    return q.from(q.face_start(f) + labels.vanishing_corner[static_cast<std::size_t>(f)]);
+  };
+  EXPECT_NE(vanishing_vertex(8), vanishing_vertex(9));
+  // A corner wider than the slack allows is never taken: a is 45 degrees,
+  // c about 40, so a 1-degree slack keeps the acute choice.
+  rule.tolerance_rad = 1.0 * std::numbers::pi / 180.0;
+  EXPECT_EQ(label_field(q, rule).irregular_vertices.size(), 2u);
+  // The cut of either labelling is a valid disc.
+  CutParams params;
+  params.vanishing.fewest_irregular = true;
+  params.vanishing.tolerance_rad = 10.0 * std::numbers::pi / 180.0;
+  const CutMesh cut = cut_surface(q, params);
+  const auto problems = verify_cut(cut);
+  EXPECT_TRUE(problems.empty()) << problems.front();
+  EXPECT_EQ(summarize(cut).cut_edges, 0);
 }
 
 TEST(LabelsTest, CubeCornersAreTheIrregularVertices) {
@@ -227,6 +287,7 @@ TEST(CutTest, EverySharedMeshBecomesOneDisc) {
   ASSERT_GE(files.size(), 38u);
   int remeshed = 0;
   int extracted = 0;
+  std::size_t irregular_acute = 0, irregular_regular = 0;
   for (const auto& file : files) {
     knitout::DiagnosticSink sink;
     const auto mesh = load_mesh(file.string(), {}, sink);
@@ -251,7 +312,7 @@ TEST(CutTest, EverySharedMeshBecomesOneDisc) {
     EXPECT_EQ(q.euler_characteristic(), input.euler_characteristic()) << file;
     EXPECT_EQ(q.count_boundary_loops(), input.count_boundary_loops()) << file;
     for (std::uint64_t seed : {1u, 2u}) {
-      const CutMesh cut = cut_surface(q, {seed, 1000.0, 1.0});
+      const CutMesh cut = cut_surface(q, cut_params(seed));
       const auto problems = verify_cut(cut);
       EXPECT_TRUE(problems.empty()) << file << " seed " << seed << ": " << problems.front();
       const HalfedgeMesh disc(cut.disc);
@@ -262,11 +323,29 @@ TEST(CutTest, EverySharedMeshBecomesOneDisc) {
         EXPECT_TRUE(boundary.count(v)) << file << ": singular vertex " << v << " inside the disc";
       }
     }
+    // The same holds with the vanishing corners chosen for regularity, which
+    // never leaves more irregular vertices than the most acute corners.
+    CutParams regular = cut_params(1);
+    regular.vanishing.fewest_irregular = true;
+    regular.vanishing.tolerance_rad = 30.0 * std::numbers::pi / 180.0;
+    const CutMesh acute_cut = cut_surface(q, cut_params(1));
+    const CutMesh cut = cut_surface(q, regular);
+    const auto problems = verify_cut(cut);
+    EXPECT_TRUE(problems.empty()) << file << " regular: " << problems.front();
+    EXPECT_EQ(HalfedgeMesh(cut.disc).euler_characteristic(), 1) << file << " regular";
+    EXPECT_EQ(HalfedgeMesh(cut.disc).count_boundary_loops(), 1) << file << " regular";
+    EXPECT_LE(cut.labels.irregular_vertices.size(), acute_cut.labels.irregular_vertices.size())
+        << file;
+    irregular_acute += acute_cut.labels.irregular_vertices.size();
+    irregular_regular += cut.labels.irregular_vertices.size();
   }
   // Most triangle meshes get a lattice-extracted proxy; the rest fall back
   // to triangle pairing (docs/cutting.md lists which).
   EXPECT_GE(remeshed, 20);
   EXPECT_GE(extracted * 3, remeshed * 2) << extracted << " of " << remeshed;
+  // Over all meshes the regular choice removes a good share of them.
+  EXPECT_LT(irregular_regular * 10, irregular_acute * 9)
+      << irregular_regular << " of " << irregular_acute;
 }
 
 }  // namespace

@@ -115,8 +115,9 @@ fs::path write_closed_torus_cut(const std::string& name) {
   write_file(dir / "garment.obj", obj_text(garment.vertices, garment.faces));
   const CoverMesh ring = torus_mesh(1.0, 0.4, 48, 24);
   write_file(dir / "torus.obj", obj_text(ring.vertices, ring.faces));
-  const auto cut = run_wearknit("cut " + (dir / "garment.obj").string() + " -o " +
-                                (dir / "cut").string() + " --seed 1 --picture-px 60 --quiet");
+  const auto cut =
+      run_wearknit("cut " + (dir / "garment.obj").string() + " -o " + (dir / "cut").string() +
+                   " --seed 1 --picture-px 60 --quiet --vanishing regular --vanishing-slack 25");
   EXPECT_EQ(cut.exit_code, 0) << cut.err;
   auto cuts = nlohmann::json::parse(read_file(dir / "cut" / "cuts.json"));
   EXPECT_GE(cuts["arcs"].size(), 2u) << "a torus needs two loops cut";
@@ -175,6 +176,9 @@ TEST(WearabilityVerbTest, UnwearableCutIsCutAgainWithAnotherSeed) {
   // report.json: the new seed, the input kept, every attempt.
   const auto report = nlohmann::json::parse(read_file(cut / "report.json"));
   EXPECT_EQ(report["params"]["seed"], recut_seed);
+  // The re-cut keeps the cut's other parameters.
+  EXPECT_EQ(report["params"]["vanishing"], "regular");
+  EXPECT_NEAR(report["params"]["vanishing_slack_deg"].get<double>(), 25.0, 1e-9);
   EXPECT_EQ(report["input"]["file"], (dir / "garment.obj").string());
   EXPECT_EQ(report["wearability"]["recut"], true);
   EXPECT_EQ(report["wearability"]["cut_attempts"], summary["cut_attempts"]);
