@@ -13,6 +13,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "planner/union_find.hpp"
 #include "simulators/cloth/parallel.hpp"
 
 namespace planner {
@@ -46,20 +47,6 @@ std::vector<int> random_order(int n, std::uint64_t seed) {
   for (int i = n - 1; i > 0; --i) std::swap(order[i], order[random() % (i + 1)]);
   return order;
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 }  // namespace
 
