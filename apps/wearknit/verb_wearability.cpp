@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -98,14 +99,25 @@ void draw_layout(std::ostream& out, const planner::CoverMesh& mesh,
     }
   }
   cairo_set_dash(cr, nullptr, 0, 0);
-  // Legend swatches, bottom left: sew, then lace. No text: cairo's text goes
-  // through fontconfig, whose caches the leak checker reports.
-  cairo_set_source_rgb(cr, 0.15, 0.7, 0.2);
-  cairo_rectangle(cr, 40, kSize - 36, 24, 16);
-  cairo_fill(cr);
-  cairo_set_source_rgb(cr, 0.85, 0.1, 0.2);
-  cairo_rectangle(cr, 72, kSize - 36, 24, 16);
-  cairo_fill(cr);
+  // Legend, bottom left: sew, lace (with several runs the colour runs
+  // between them with the share of runs that laced the arc), and what
+  // dashes mean.
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, 14);
+  double x = 40;
+  const std::pair<const char*, std::array<double, 3>> entries[] = {{"sew", {0.15, 0.7, 0.2}},
+                                                                   {"lace", {0.85, 0.1, 0.2}}};
+  for (const auto& [label, colour] : entries) {
+    cairo_set_source_rgb(cr, colour[0], colour[1], colour[2]);
+    cairo_rectangle(cr, x, kSize - 36, 24, 16);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    cairo_move_to(cr, x + 30, kSize - 23);
+    cairo_show_text(cr, label);
+    x += 90;
+  }
+  cairo_move_to(cr, x, kSize - 23);
+  cairo_show_text(cr, "dashed: on the far side");
   cairo_surface_flush(surface);
   cairo_surface_write_to_png_stream(
       surface,
