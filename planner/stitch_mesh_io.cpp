@@ -199,6 +199,36 @@ std::string draw_stitch_mesh(const StitchMesh& mesh, const std::string& png_path
     }
     cairo_restore(cr);
   }
+  // Legend, bottom left: the face types and the cut boundary.
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, std::max(10.0, panel_px / 45.0));
+  const double swatch = std::max(10.0, panel_px / 40.0);
+  double x = swatch;
+  const double y = size - 2.0 * swatch;
+  const std::pair<const char*, FaceType> types[] = {{"knit", FaceType::Knit},
+                                                    {"increase", FaceType::Increase},
+                                                    {"decrease", FaceType::Decrease},
+                                                    {"short row", FaceType::ShortRow}};
+  cairo_text_extents_t extents;
+  for (const auto& [label, type] : types) {
+    const std::array<double, 3> colour = type_colour(type);
+    cairo_set_source_rgb(cr, colour[0], colour[1], colour[2]);
+    cairo_rectangle(cr, x, y, 1.5 * swatch, swatch);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    cairo_move_to(cr, x + 2.0 * swatch, y + 0.85 * swatch);
+    cairo_show_text(cr, label);
+    cairo_text_extents(cr, label, &extents);
+    x += 3.0 * swatch + extents.x_advance;
+  }
+  cairo_set_source_rgb(cr, 0.85, 0.05, 0.05);
+  cairo_set_line_width(cr, 2.0);
+  cairo_move_to(cr, x, y + 0.5 * swatch);
+  cairo_line_to(cr, x + 1.5 * swatch, y + 0.5 * swatch);
+  cairo_stroke(cr);
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  cairo_move_to(cr, x + 2.0 * swatch, y + 0.85 * swatch);
+  cairo_show_text(cr, "cut (edge of the sheet)");
   cairo_destroy(cr);
   cairo_surface_flush(surface);
   const std::string failure = knitout::write_file_atomically(png_path, [&](std::ostream& out) {
