@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <queue>
 #include <random>
@@ -227,24 +228,23 @@ FieldLabels label_field(const HalfedgeMesh& q, const VanishingRule& rule) {
     }
     labels.vanishing_corner[at(f)] = best;
     for (int i = 0; i < 3; ++i) {
-      allowed[at(f)][at(i)] = angles[at(i)] <= smallest + rule.tolerance_rad;
+      allowed[at(f)][at(i)] = angles[at(i)] <= smallest + rule.slack_deg * std::numbers::pi / 180.0;
     }
   }
-  if (!rule.fewest_irregular) return labels_with_vanishing(q, std::move(labels.vanishing_corner));
+  FieldLabels acute = labels_with_vanishing(q, std::move(labels.vanishing_corner));
+  if (!rule.fewest_irregular) return acute;
   // Corners around each vertex, not counting vanishing ones; a triangle moves
   // its vanishing corner to another allowed corner when that brings its three
   // vertices closer to four corners each (sum of |count - 4| over interior
   // vertices), until no triangle can.
-  std::vector<int> count(at(q.num_vertices()), 0);
-  for (int h = 0; h < q.num_halfedges(); ++h) {
-    if (!is_vanishing(q, labels, h)) ++count[at(q.from(h))];
-  }
+  std::vector<int>& count = acute.corner_count;
+  std::vector<int>& vanishing = acute.vanishing_corner;
   auto misfit = [&](int v) { return q.is_boundary_vertex(v) ? 0 : std::abs(count[at(v)] - 4); };
   for (int sweep = 0; sweep < 100; ++sweep) {
     bool moved = false;
     for (int f = 0; f < q.num_faces(); ++f) {
       if (q.degree(f) != 3) continue;
-      const int current = labels.vanishing_corner[at(f)];
+      const int current = vanishing[at(f)];
       const int from = q.from(q.face_start(f) + current);
       int choice = current, choice_cost = 0;
       for (int i = 0; i < 3; ++i) {
@@ -264,13 +264,13 @@ FieldLabels label_field(const HalfedgeMesh& q, const VanishingRule& rule) {
       if (choice != current) {
         ++count[at(from)];
         --count[at(q.from(q.face_start(f) + choice))];
-        labels.vanishing_corner[at(f)] = choice;
+        vanishing[at(f)] = choice;
         moved = true;
       }
     }
     if (!moved) break;
   }
-  return labels_with_vanishing(q, std::move(labels.vanishing_corner));
+  return labels_with_vanishing(q, std::move(vanishing));
 }
 
 FieldLabels labels_with_vanishing(const HalfedgeMesh& q, std::vector<int> vanishing_corner) {

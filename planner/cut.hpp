@@ -36,11 +36,11 @@ struct FieldLabels {
 };
 // How the vanishing corner of each triangle is chosen. §4.1 takes the most
 // acute corner. With `fewest_irregular` a triangle may instead vanish at any
-// corner at most `tolerance_rad` wider than its most acute one, chosen so
-// that fewer interior vertices are irregular (docs/cutting.md).
+// corner at most `slack_deg` degrees wider than its most acute one, chosen
+// so that fewer interior vertices are irregular (docs/cutting.md).
 struct VanishingRule {
   bool fewest_irregular = false;
-  double tolerance_rad = 0.0;
+  double slack_deg = 0.0;
 };
 FieldLabels label_field(const HalfedgeMesh& q, const VanishingRule& rule = {});
 // The same for given vanishing corners (as read back from labels.json).

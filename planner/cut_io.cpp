@@ -4,7 +4,6 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <ostream>
 
 #include "knitout/output_file.hpp"
@@ -105,7 +104,7 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
             {"cs", r.params.cs},
             {"co", r.params.co},
             {"vanishing", r.params.vanishing.fewest_irregular ? "regular" : "acute"},
-            {"vanishing_slack_deg", r.params.vanishing.tolerance_rad * 180.0 / std::numbers::pi}}},
+            {"vanishing_slack_deg", r.params.vanishing.slack_deg}}},
           {"irregular_vertices", cut.labels.irregular_vertices},
           {"irregular_vertex_count", s.irregular_vertices},
           {"cut_edges", s.cut_edges},

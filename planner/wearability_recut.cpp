@@ -5,7 +5,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 
 #include "knitout/output_file.hpp"
 #include "planner/cut.hpp"
@@ -83,8 +82,7 @@ CutReport report_from_json(const json& r) {
   report.params.cs = params.value("cs", report.params.cs);
   report.params.co = params.value("co", report.params.co);
   report.params.vanishing.fewest_irregular = params.value("vanishing", "acute") == "regular";
-  report.params.vanishing.tolerance_rad =
-      params.value("vanishing_slack_deg", 0.0) * std::numbers::pi / 180.0;
+  report.params.vanishing.slack_deg = params.value("vanishing_slack_deg", 0.0);
   const json time = r.value("time_s", json::object());
   report.load_seconds = time.value("load", 0.0);
   report.proxy_seconds = time.value("proxy", 0.0);

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
-#include <numbers>
 #include <ostream>
 
 #include "apps/wearknit/cli.hpp"
@@ -88,7 +87,7 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
     return kExitUsage;
   }
   params.vanishing.fewest_irregular = vanishing == "regular";
-  params.vanishing.tolerance_rad = vanishing_slack_deg * std::numbers::pi / 180.0;
+  params.vanishing.slack_deg = vanishing_slack_deg;
   params.seed = seed;
 
   planner::CutReport report;

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <iostream>
-#include <numbers>
 #include <set>
 
 #include "planner/cut_io.hpp"
@@ -84,7 +83,7 @@ TEST(LabelsTest, RegularVanishingCornersMakeTheSplitCellRegular) {
   const HalfedgeMesh q(grid_with_split_cell());
   VanishingRule rule;
   rule.fewest_irregular = true;
-  rule.tolerance_rad = 10.0 * std::numbers::pi / 180.0;
+  rule.slack_deg = 10.0;
   const FieldLabels labels = label_field(q, rule);
   EXPECT_TRUE(labels.irregular_vertices.empty());
   // One triangle vanishes at a, the other at c.
@@ -94,12 +93,12 @@ TEST(LabelsTest, RegularVanishingCornersMakeTheSplitCellRegular) {
   EXPECT_NE(vanishing_vertex(8), vanishing_vertex(9));
   // A corner wider than the slack allows is never taken: a is 45 degrees,
   // c about 40, so a 1-degree slack keeps the acute choice.
-  rule.tolerance_rad = 1.0 * std::numbers::pi / 180.0;
+  rule.slack_deg = 1.0;
   EXPECT_EQ(label_field(q, rule).irregular_vertices.size(), 2u);
   // The cut of either labelling is a valid disc.
   CutParams params;
   params.vanishing.fewest_irregular = true;
-  params.vanishing.tolerance_rad = 10.0 * std::numbers::pi / 180.0;
+  params.vanishing.slack_deg = 10.0;
   const CutMesh cut = cut_surface(q, params);
   const auto problems = verify_cut(cut);
   EXPECT_TRUE(problems.empty()) << problems.front();
@@ -327,7 +326,7 @@ TEST(CutTest, EverySharedMeshBecomesOneDisc) {
     // never leaves more irregular vertices than the most acute corners.
     CutParams regular = cut_params(1);
     regular.vanishing.fewest_irregular = true;
-    regular.vanishing.tolerance_rad = 30.0 * std::numbers::pi / 180.0;
+    regular.vanishing.slack_deg = 30.0;
     const CutMesh acute_cut = cut_surface(q, cut_params(1));
     const CutMesh cut = cut_surface(q, regular);
     const auto problems = verify_cut(cut);
