@@ -70,7 +70,15 @@ for arg in sys.argv[1:]:
         result = "failed: cut"
     else:
         result = "failed (exit %s)" % exit_code
-    s = plan.get("summary", plan.get("partial_summary", {}))
+    s = dict(plan.get("summary", plan.get("partial_summary", {})))
+    if plan.get("summary") and "schedule" in report:
+        # The folder may have been scheduled again after the plan (another
+        # pattern or seed): its schedule figures are the ones that count.
+        pieces = report["schedule"]["pieces"]
+        s["pieces"] = len(pieces)
+        s["schedule_cuts"] = report["schedule"]["cuts"]
+        s["passes"] = sum(p["passes"] for p in pieces)
+        s["estimated_knit_time_s"] = sum(p["estimated_knit_time_s"] for p in pieces)
 
     def t(stage):
         return "%.1f" % times[stage] if stage in times else "–"
