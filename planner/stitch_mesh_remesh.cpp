@@ -1243,9 +1243,11 @@ struct Builder {
 
   // Splits the longest side of a fixed bottom chain whose face below is a
   // knit stitch (it becomes an increase, §6.3) or a decrease (it becomes two
-  // knit stitches), so the bottom chain has one more side. False when no
-  // side qualifies.
+  // knit stitches), or that has no face below (a cast-on side, possibly
+  // under glued lenses: one more stitch is cast on), so the bottom chain has
+  // one more side. False when no side qualifies.
   bool split_side_below(const Chain& low) {
+    constexpr std::size_t kNoFace = std::numeric_limits<std::size_t>::max();
     double longest = 0;
     std::size_t best_curve = 0;
     std::size_t best_index = 0;
@@ -1257,20 +1259,32 @@ struct Builder {
       if (it == curve_of_edge.end()) continue;
       const std::vector<int>& samples = curve_samples[at(it->second)];
       for (std::size_t k = 0; k + 1 < samples.size(); ++k) {
-        for (const auto& [u, v] :
-             {std::pair{samples[k], samples[k + 1]}, std::pair{samples[k + 1], samples[k]}}) {
-          auto below = face_below.find(key(u, v));
-          if (below == face_below.end()) continue;
-          const FaceType type = mesh.faces[below->second].type;
-          if (type != FaceType::Knit && type != FaceType::Decrease) continue;
-          const double length = (mesh.positions[at(u)] - mesh.positions[at(v)]).norm();
+        const int u = samples[k];
+        const int v = samples[k + 1];
+        const double length = (mesh.positions[at(u)] - mesh.positions[at(v)]).norm();
+        auto below = face_below.find(key(u, v));
+        if (below == face_below.end()) below = face_below.find(key(v, u));
+        if (below == face_below.end()) {
+          // Nothing below: the side was cast on (directly, or through
+          // lenses glued onto a cast-on side), and casting on one more
+          // stitch there changes no face.
           if (length > longest) {
             longest = length;
             best_curve = at(it->second);
             best_index = k;
-            best_face = below->second;
+            best_face = kNoFace;
             found = true;
           }
+          continue;
+        }
+        const FaceType type = mesh.faces[below->second].type;
+        if (type != FaceType::Knit && type != FaceType::Decrease) continue;
+        if (length > longest) {
+          longest = length;
+          best_curve = at(it->second);
+          best_index = k;
+          best_face = below->second;
+          found = true;
         }
       }
     }
@@ -1281,6 +1295,10 @@ struct Builder {
     const int middle = static_cast<int>(mesh.positions.size());
     mesh.positions.push_back(0.5 * (mesh.positions[at(u)] + mesh.positions[at(v)]));
     samples.insert(samples.begin() + static_cast<std::ptrdiff_t>(best_index) + 1, middle);
+    if (best_face == kNoFace) {
+      ++stats.sides_split_below;
+      return true;
+    }
     StitchFace& face = mesh.faces[best_face];
     const std::size_t n = face.vertices.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -1703,6 +1721,7 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   result.stats.saddles_split = builder.stats.saddles_split;
   result.stats.invalid_faces = builder.stats.invalid_faces;
   result.stats.boundary_sides = builder.stats.boundary_sides;
+  result.stats.sides_split_below = builder.stats.sides_split_below;
   result.mesh = std::move(builder.mesh);
   result.problems = std::move(builder.problems);
   for (std::string& line : check(result.mesh)) result.problems.push_back(std::move(line));
