@@ -238,6 +238,7 @@ ProxyResult make_proxy(const SurfaceMesh& input, const ProxyParams& params) {
     result.samples = stats.samples;
     if (extracted && is_quad_dominant(*extracted)) {
       result.method = "instant-meshes";
+      result.holes_filled = stats.holes_filled;
       result.mesh = std::move(*extracted);
     } else {
       result.method = "paired";

@@ -22,8 +22,8 @@ struct ProxyParams {
   // gives about `auto_faces` quads.
   double proxy_edge_mm = 0.0;
   int auto_faces = 3000;
-  int field_iterations = 100;     // orientation-field smoothing sweeps
-  int position_iterations = 100;  // position-field smoothing sweeps
+  int field_iterations = 30;     // orientation-field smoothing sweeps
+  int position_iterations = 30;  // position-field smoothing sweeps
 };
 
 struct ProxyResult {
@@ -37,7 +37,8 @@ struct ProxyResult {
   // triangles of the resampled surface were paired along the field instead).
   std::string method = "input";
   std::string remesh_failure;
-  int samples = 0;
+  int samples = 0;       // remeshed: the surface samples the fields were solved on
+  int holes_filled = 0;  // remeshed: holes of the extraction closed by a polygon
 };
 
 // More than half of the faces are quads.

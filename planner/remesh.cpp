@@ -11,6 +11,7 @@
 #include <map>
 #include <numeric>
 #include <stdexcept>
+#include <tuple>
 #include <unordered_map>
 
 #include "knitout/diagnostic.hpp"
@@ -35,9 +36,7 @@ struct TriTraits : public OpenMesh::DefaultTraits {
 };
 using TriMesh = OpenMesh::TriMesh_ArrayKernelT<TriTraits>;
 
-// Shortest edges collapse first until none is shorter than `target`; normal
-// flips are refused and OpenMesh's link condition keeps the topology.
-SurfaceMesh decimate(const SurfaceMesh& input, double target) {
+TriMesh to_trimesh(const SurfaceMesh& input) {
   TriMesh tri;
   std::vector<TriMesh::VertexHandle> handles;
   handles.reserve(input.positions.size());
@@ -49,9 +48,32 @@ SurfaceMesh decimate(const SurfaceMesh& input, double target) {
       const auto fh = tri.add_face(handles[static_cast<std::size_t>(face[0])],
                                    handles[static_cast<std::size_t>(face[i])],
                                    handles[static_cast<std::size_t>(face[i + 1])]);
-      if (!fh.is_valid()) throw std::logic_error("decimate: checked mesh rejected by OpenMesh");
+      if (!fh.is_valid()) throw std::logic_error("resample: checked mesh rejected by OpenMesh");
     }
   }
+  return tri;
+}
+
+SurfaceMesh from_trimesh(TriMesh& tri) {
+  tri.garbage_collection();
+  SurfaceMesh out;
+  out.positions.reserve(tri.n_vertices());
+  for (const auto vh : tri.vertices()) {
+    const auto& p = tri.point(vh);
+    out.positions.emplace_back(p[0], p[1], p[2]);
+  }
+  for (const auto fh : tri.faces()) {
+    std::vector<int> face;
+    for (const auto vh : tri.fv_range(fh)) face.push_back(vh.idx());
+    out.faces.push_back(std::move(face));
+  }
+  return out;
+}
+
+// Shortest edges collapse first until none is shorter than `target`; normal
+// flips are refused and OpenMesh's link condition keeps the topology.
+SurfaceMesh decimate(const SurfaceMesh& input, double target) {
+  TriMesh tri = to_trimesh(input);
   tri.update_face_normals();
   tri.update_vertex_normals();
   {
@@ -69,19 +91,31 @@ SurfaceMesh decimate(const SurfaceMesh& input, double target) {
     decimater.initialize();
     decimater.decimate();
   }
-  tri.garbage_collection();
-  SurfaceMesh out;
-  out.positions.reserve(tri.n_vertices());
-  for (const auto vh : tri.vertices()) {
-    const auto& p = tri.point(vh);
-    out.positions.emplace_back(p[0], p[1], p[2]);
+  return from_trimesh(tri);
+}
+
+// Every edge longer than `max_length` is split at its midpoint (with the
+// triangles on both sides) until none is: the fields compare neighbouring
+// samples, and a sample edge longer than half a lattice step can span two
+// lattice steps, which the extraction cannot connect (Instant Meshes
+// subdivides its input the same way before solving).
+SurfaceMesh split_long_edges(const SurfaceMesh& input, double max_length) {
+  TriMesh tri = to_trimesh(input);
+  const double limit = max_length * max_length;
+  for (bool split = true; split;) {
+    split = false;
+    const std::size_t edges = tri.n_edges();
+    for (std::size_t e = 0; e < edges; ++e) {
+      const auto eh = tri.edge_handle(static_cast<int>(e));
+      const auto heh = tri.halfedge_handle(eh, 0);
+      const auto& a = tri.point(tri.from_vertex_handle(heh));
+      const auto& b = tri.point(tri.to_vertex_handle(heh));
+      if ((b - a).sqrnorm() <= limit) continue;
+      tri.split(eh, TriMesh::Point((a + b) * 0.5));
+      split = true;
+    }
   }
-  for (const auto fh : tri.faces()) {
-    std::vector<int> face;
-    for (const auto vh : tri.fv_range(fh)) face.push_back(vh.idx());
-    out.faces.push_back(std::move(face));
-  }
-  return out;
+  return from_trimesh(tri);
 }
 
 double mean_edge_length(const SurfaceMesh& mesh) {
@@ -137,13 +171,38 @@ SurfaceMesh resample(const SurfaceMesh& input, double target_mm, double keep_abo
   // slowest step, so it is kept for the meshes that need it).
   while (mean_edge_length(tri) > 2.0 * target_mm && tri.faces.size() < 4000000)
     tri = subdivide(tri);
-  if (mean_edge_length(tri) >= keep_above * target_mm) return tri;
-  SurfaceMesh decimated = decimate(tri, target_mm);
+  if (mean_edge_length(tri) < keep_above * target_mm) {
+    SurfaceMesh decimated = decimate(tri, target_mm);
+    knitout::DiagnosticSink sink;
+    // OpenMesh keeps the topology; should a collapse still leave a fold, the
+    // finer mesh is the safe answer.
+    if (check_mesh(decimated, "resample", sink)) tri = std::move(decimated);
+  }
+  return tri;
+}
+
+// The samples the fields live on: `resample`, then every edge longer than
+// 1.25 * target_mm split. Where that leaves many edges shorter than half the
+// target (a fifth of them or more: a CAD mesh's slivers, cut up by the
+// subdivision and the splits),
+// the short ones collapse and the lengthened ones are split again.
+SurfaceMesh sample_surface(const SurfaceMesh& input, double target_mm) {
+  SurfaceMesh tri = split_long_edges(resample(input, target_mm), 1.25 * target_mm);
+  std::size_t edges = 0;
+  std::size_t short_edges = 0;
+  for (const auto& face : tri.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const double length =
+          (tri.positions[at(face[(i + 1) % face.size()])] - tri.positions[at(face[i])]).norm();
+      ++edges;
+      if (length < 0.5 * target_mm) ++short_edges;
+    }
+  }
+  if (short_edges * 5 <= edges) return tri;
+  SurfaceMesh decimated = decimate(tri, 0.7 * target_mm);
   knitout::DiagnosticSink sink;
-  // OpenMesh keeps the topology; should a collapse still leave a fold, the
-  // finer mesh is the safe answer.
   if (!check_mesh(decimated, "resample", sink)) return tri;
-  return decimated;
+  return split_long_edges(decimated, 1.25 * target_mm);
 }
 
 // The representative of the 4-fold direction (o, n x o, -o, -n x o) closest to `target`.
@@ -155,52 +214,183 @@ Vec3 closest_representative(const Vec3& o, const Vec3& n, const Vec3& target) {
   return b >= 0 ? q : Vec3(-q);
 }
 
-// Extrinsic 4-RoSy smoothing (Instant Meshes, Jakob et al. 2015, §3.1):
-// every vertex moves its direction towards the sum of its neighbours'
-// closest representatives, projected onto its tangent plane.
-std::vector<Vec3> orientation_field(const HalfedgeMesh& mesh, std::vector<Vec3>& normals,
-                                    int iterations) {
+namespace {
+
+// The graph the fields live on, at one level of the multi-resolution
+// hierarchy of Instant Meshes (Jakob et al. 2015, §4): level 0 is the
+// sampled surface; each coarser level merges pairs of neighbours.
+struct FieldGraph {
+  std::vector<Vec3> position;
+  std::vector<Vec3> normal;
+  std::vector<double> area;
+  std::vector<std::vector<int>> adjacent;
+  std::vector<int> parent;  // each vertex's vertex in the next coarser level
+};
+
+FieldGraph sample_graph(const HalfedgeMesh& mesh) {
   const int nv = mesh.num_vertices();
-  normals.assign(static_cast<std::size_t>(nv), Vec3::Zero());
+  FieldGraph g;
+  g.position.resize(at(nv));
+  g.normal.assign(at(nv), Vec3::Zero());
+  g.area.assign(at(nv), 0.0);
+  g.adjacent.resize(at(nv));
+  for (int v = 0; v < nv; ++v) g.position[at(v)] = mesh.position(v);
   for (int f = 0; f < mesh.num_faces(); ++f) {
     const Vec3 n = mesh.face_normal(f);
     const int start = mesh.face_start(f);
-    for (int i = 0; i < mesh.degree(f); ++i)
-      normals[static_cast<std::size_t>(mesh.from(start + i))] += n;
+    for (int i = 0; i < mesh.degree(f); ++i) {
+      g.normal[at(mesh.from(start + i))] += n;
+      g.area[at(mesh.from(start + i))] += 0.5 * n.norm() / mesh.degree(f);
+    }
   }
-  std::vector<Vec3> field(static_cast<std::size_t>(nv));
-  for (int v = 0; v < nv; ++v) {
-    Vec3& n = normals[static_cast<std::size_t>(v)];
+  for (Vec3& n : g.normal) {
     if (n.norm() > 0)
       n.normalize();
     else
       n = Vec3::UnitZ();
-    // A fixed start (no randomness): the axis least aligned with the normal.
-    Vec3 axis = Vec3::UnitX();
-    if (std::abs(n.x()) > 0.8) axis = Vec3::UnitY();
-    field[static_cast<std::size_t>(v)] = (axis - n * n.dot(axis)).normalized();
   }
-  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(nv));
   for (int h = 0; h < mesh.num_halfedges(); ++h) {
-    neighbours[static_cast<std::size_t>(mesh.from(h))].push_back(mesh.to(h));
-    if (mesh.twin(h) < 0) neighbours[static_cast<std::size_t>(mesh.to(h))].push_back(mesh.from(h));
+    g.adjacent[at(mesh.from(h))].push_back(mesh.to(h));
+    if (mesh.twin(h) < 0) g.adjacent[at(mesh.to(h))].push_back(mesh.from(h));
   }
-  for (int it = 0; it < iterations; ++it) {
-    for (int v = 0; v < nv; ++v) {
-      const Vec3& n = normals[static_cast<std::size_t>(v)];
-      Vec3 sum = field[static_cast<std::size_t>(v)];
-      double weight = 1.0;
-      for (int w : neighbours[static_cast<std::size_t>(v)]) {
-        Vec3 r = closest_representative(field[static_cast<std::size_t>(w)],
-                                        normals[static_cast<std::size_t>(w)], sum / weight);
-        sum += r;
-        weight += 1.0;
-      }
-      Vec3 t = sum - n * n.dot(sum);
-      if (t.norm() > 1e-12) field[static_cast<std::size_t>(v)] = t.normalized();
+  return g;
+}
+
+// Instant Meshes' downsampling: neighbours are merged in pairs, those with
+// the most similar normals and the most unequal areas first (so small
+// vertices join larger ones); a vertex left without a partner stays alone.
+// Fills fine.parent.
+FieldGraph coarsen(FieldGraph& fine) {
+  const std::size_t n = fine.position.size();
+  struct Candidate {
+    double score;
+    int i, j;
+  };
+  std::vector<Candidate> candidates;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const int j : fine.adjacent[i]) {
+      if (static_cast<std::size_t>(j) <= i) continue;
+      const double ai = std::max(fine.area[i], 1e-30);
+      const double aj = std::max(fine.area[at(j)], 1e-30);
+      candidates.push_back({fine.normal[i].dot(fine.normal[at(j)]) * std::max(ai / aj, aj / ai),
+                            static_cast<int>(i), j});
     }
   }
-  return field;
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+  fine.parent.assign(n, -1);
+  FieldGraph coarse;
+  auto add = [&](const std::vector<int>& children) {
+    const int c = static_cast<int>(coarse.position.size());
+    Vec3 p = Vec3::Zero();
+    Vec3 normal = Vec3::Zero();
+    double area = 0.0;
+    for (const int v : children) {
+      fine.parent[at(v)] = c;
+      const double w = std::max(fine.area[at(v)], 1e-30);
+      p += w * fine.position[at(v)];
+      normal += w * fine.normal[at(v)];
+      area += w;
+    }
+    coarse.position.push_back(p / area);
+    coarse.normal.push_back(normal.norm() > 1e-12 ? Vec3(normal.normalized())
+                                                  : fine.normal[at(children.front())]);
+    coarse.area.push_back(area);
+  };
+  for (const Candidate& c : candidates) {
+    if (fine.parent[at(c.i)] < 0 && fine.parent[at(c.j)] < 0) add({c.i, c.j});
+  }
+  for (std::size_t v = 0; v < n; ++v) {
+    if (fine.parent[v] < 0) add({static_cast<int>(v)});
+  }
+  coarse.adjacent.resize(coarse.position.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const int j : fine.adjacent[i]) {
+      const int a = fine.parent[i];
+      const int b = fine.parent[at(j)];
+      if (a != b) coarse.adjacent[at(a)].push_back(b);
+    }
+  }
+  for (auto& list : coarse.adjacent) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return coarse;
+}
+
+// Level 0 and coarser levels until one is small or stops shrinking.
+std::vector<FieldGraph> field_hierarchy(FieldGraph finest) {
+  std::vector<FieldGraph> levels;
+  levels.push_back(std::move(finest));
+  while (levels.back().position.size() > 16) {
+    FieldGraph next = coarsen(levels.back());
+    if (next.position.size() * 10 > levels.back().position.size() * 9) {
+      levels.back().parent.clear();
+      break;
+    }
+    levels.push_back(std::move(next));
+  }
+  return levels;
+}
+
+// Extrinsic 4-RoSy smoothing (Instant Meshes §3.1): every vertex moves its
+// direction towards the sum of its neighbours' closest representatives,
+// projected onto its tangent plane.
+void smooth_orientation(const FieldGraph& g, std::vector<Vec3>& field, int iterations) {
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t v = 0; v < g.position.size(); ++v) {
+      const Vec3& n = g.normal[v];
+      Vec3 sum = field[v];
+      double weight = 1.0;
+      for (const int w : g.adjacent[v]) {
+        sum += closest_representative(field[at(w)], g.normal[at(w)], sum / weight);
+        weight += 1.0;
+      }
+      const Vec3 t = sum - n * n.dot(sum);
+      if (t.norm() > 1e-12) field[v] = t.normalized();
+    }
+  }
+}
+
+// A fixed start (no randomness): the axis least aligned with the normal.
+Vec3 start_direction(const Vec3& n) {
+  const Vec3 axis = std::abs(n.x()) > 0.8 ? Vec3::UnitY() : Vec3::UnitX();
+  return (axis - n * n.dot(axis)).normalized();
+}
+
+// The orientation field solved coarse to fine: the coarsest level from the
+// fixed start, each finer level from its parents' directions projected onto
+// its tangent planes, then smoothed (`iterations` sweeps per level). One
+// field per level, level 0 first.
+std::vector<std::vector<Vec3>> solve_orientation(const std::vector<FieldGraph>& levels,
+                                                 int iterations) {
+  std::vector<std::vector<Vec3>> fields(levels.size());
+  for (std::size_t k = levels.size(); k-- > 0;) {
+    const FieldGraph& g = levels[k];
+    std::vector<Vec3>& field = fields[k];
+    field.resize(g.position.size());
+    for (std::size_t v = 0; v < g.position.size(); ++v) {
+      const Vec3& n = g.normal[v];
+      if (k + 1 == levels.size()) {
+        field[v] = start_direction(n);
+        continue;
+      }
+      const Vec3& up = fields[k + 1][at(g.parent[v])];
+      const Vec3 t = up - n * n.dot(up);
+      field[v] = t.norm() > 1e-9 ? Vec3(t.normalized()) : start_direction(n);
+    }
+    smooth_orientation(g, field, iterations);
+  }
+  return fields;
+}
+
+}  // namespace
+
+std::vector<Vec3> orientation_field(const HalfedgeMesh& mesh, std::vector<Vec3>& normals,
+                                    int iterations) {
+  std::vector<FieldGraph> levels = field_hierarchy(sample_graph(mesh));
+  normals = levels.front().normal;
+  return std::move(solve_orientation(levels, iterations).front());
 }
 
 namespace {
@@ -326,45 +516,191 @@ void keep_largest_component(SurfaceMesh& mesh) {
   mesh.positions = std::move(positions);
 }
 
+// 4-PoSy smoothing (Instant Meshes §3.2, extrinsic): each lattice origin
+// moves to the average of its neighbours' compatible lattice points, then
+// snaps to the lattice point nearest its own vertex.
+void smooth_position(const FieldGraph& g, const std::vector<Vec3>& q, std::vector<Vec3>& origin,
+                     double s, int iterations) {
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t v = 0; v < g.position.size(); ++v) {
+      const Vec3& p = g.position[v];
+      const Vec3& n = g.normal[v];
+      const Vec3& qv = q[v];
+      Vec3 sum = origin[v];
+      double weight = 0.0;
+      for (const int w : g.adjacent[v]) {
+        const Vec3 qw = closest_representative(q[at(w)], g.normal[at(w)], qv);
+        const auto [a, b] = compatible_positions(p, n, qv, sum, g.position[at(w)], g.normal[at(w)],
+                                                 qw, origin[at(w)], s);
+        sum = (a * weight + b) / (weight + 1.0);
+        weight += 1.0;
+        sum -= n * n.dot(sum - p);
+      }
+      origin[v] = lattice_round(sum, qv, n, p, s);
+    }
+  }
+}
+
+// The position field coarse to fine, as the orientation: each vertex starts
+// from its parent's lattice origin moved onto its own tangent plane.
+std::vector<Vec3> solve_position(const std::vector<FieldGraph>& levels,
+                                 const std::vector<std::vector<Vec3>>& fields, double s,
+                                 int iterations) {
+  std::vector<Vec3> origin;
+  for (std::size_t k = levels.size(); k-- > 0;) {
+    const FieldGraph& g = levels[k];
+    std::vector<Vec3> next(g.position.size());
+    for (std::size_t v = 0; v < g.position.size(); ++v) {
+      const Vec3& p = g.position[v];
+      const Vec3& n = g.normal[v];
+      if (k + 1 == levels.size()) {
+        next[v] = p;
+        continue;
+      }
+      const Vec3& up = origin[at(g.parent[v])];
+      next[v] = up - n * n.dot(up - p);
+    }
+    origin = std::move(next);
+    smooth_position(g, fields[k], origin, s, iterations);
+  }
+  return origin;
+}
+
+// Where the tracing left a face out (a walk that did not close, a loop
+// dropped as a spike) the extracted surface has a hole the input does not
+// have. Every boundary loop but the `keep` longest is closed by one polygon
+// (the proxy splits polygons into quads and triangles, §4.1); a hole wider
+// than `max_corners` is left, and the topology check then rejects the mesh.
+// Instant Meshes' extraction closes its holes the same way. Returns the
+// number of holes closed. Vertices must not be pinched (one boundary gap
+// each), so every boundary loop is simple.
+// Lattice vertices joined by an edge shorter than `below` are one vertex
+// (the extraction's rounding leaves such pairs where the position field
+// bends, and they would become needle-thin faces). Pairs only: a vertex
+// merged once is not merged again, so a row of short edges does not
+// collapse into one point. Positions and normals are averaged; adjacency
+// lists are renumbered, sorted and free of self-loops.
+void merge_short_edges(double below, std::vector<Vec3>& position, std::vector<Vec3>& normal,
+                       std::vector<Vec3>& axis, std::vector<bool>& boundary,
+                       std::vector<std::vector<int>>& adjacent) {
+  const std::size_t n = position.size();
+  std::vector<int> into(n, -1);
+  std::vector<std::tuple<double, int, int>> short_edges;
+  for (std::size_t a = 0; a < n; ++a) {
+    for (int b : adjacent[a]) {
+      const double length = (position[at(b)] - position[a]).norm();
+      if (static_cast<int>(a) < b && length < below)
+        short_edges.emplace_back(length, static_cast<int>(a), b);
+    }
+  }
+  if (short_edges.empty()) return;
+  std::sort(short_edges.begin(), short_edges.end());
+  for (const auto& [length, a, b] : short_edges) {
+    if (into[at(a)] >= 0 || into[at(b)] >= 0) continue;
+    into[at(a)] = a;
+    into[at(b)] = a;
+  }
+  std::vector<int> index(n, -1);
+  std::vector<Vec3> merged_position;
+  std::vector<Vec3> merged_normal;
+  std::vector<Vec3> merged_axis;
+  std::vector<bool> merged_boundary;
+  std::vector<int> count;
+  for (std::size_t v = 0; v < n; ++v) {
+    const int root = into[v] >= 0 ? into[v] : static_cast<int>(v);
+    if (index[at(root)] < 0) {
+      index[at(root)] = static_cast<int>(merged_position.size());
+      merged_position.push_back(Vec3::Zero());
+      merged_normal.push_back(Vec3::Zero());
+      merged_axis.push_back(axis[v]);
+      merged_boundary.push_back(false);
+      count.push_back(0);
+    }
+    const int c = index[at(root)];
+    index[v] = c;
+    merged_position[at(c)] += position[v];
+    merged_normal[at(c)] += normal[v];
+    merged_boundary[at(c)] = merged_boundary[at(c)] || boundary[v];
+    ++count[at(c)];
+  }
+  std::vector<std::vector<int>> merged_adjacent(merged_position.size());
+  for (std::size_t v = 0; v < n; ++v) {
+    for (int o : adjacent[v]) {
+      if (index[v] != index[at(o)]) merged_adjacent[at(index[v])].push_back(index[at(o)]);
+    }
+  }
+  for (std::size_t c = 0; c < merged_position.size(); ++c) {
+    merged_position[c] /= count[c];
+    merged_normal[c].normalize();
+    auto& list = merged_adjacent[c];
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  position = std::move(merged_position);
+  normal = std::move(merged_normal);
+  axis = std::move(merged_axis);
+  boundary = std::move(merged_boundary);
+  adjacent = std::move(merged_adjacent);
+}
+
+int fill_holes(SurfaceMesh& mesh, int keep, std::size_t max_corners) {
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i)
+      ++directed[{face[i], face[(i + 1) % face.size()]}];
+  }
+  std::unordered_map<int, int> boundary_next;
+  for (const auto& [edge, count] : directed) {
+    if (directed.count({edge.second, edge.first}) == 0) boundary_next[edge.first] = edge.second;
+  }
+  std::vector<std::vector<int>> loops;
+  std::vector<double> lengths;
+  std::unordered_map<int, bool> seen;
+  for (const auto& [start, unused] : boundary_next) {
+    if (seen[start]) continue;
+    std::vector<int> loop;
+    double length = 0.0;
+    for (int v = start; !seen[v]; v = boundary_next.at(v)) {
+      seen[v] = true;
+      loop.push_back(v);
+      const auto next = boundary_next.find(v);
+      if (next == boundary_next.end()) return 0;  // an open chain: not a manifold rim
+      length += (mesh.positions[at(next->second)] - mesh.positions[at(v)]).norm();
+    }
+    loops.push_back(std::move(loop));
+    lengths.push_back(length);
+  }
+  std::vector<std::size_t> order(loops.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return lengths[a] > lengths[b]; });
+  int closed = 0;
+  for (std::size_t k = static_cast<std::size_t>(std::max(keep, 0)); k < order.size(); ++k) {
+    std::vector<int>& loop = loops[order[k]];
+    if (loop.size() < 3 || loop.size() > max_corners) continue;
+    // The rim runs against the faces around it; the new face runs along it.
+    std::reverse(loop.begin(), loop.end());
+    mesh.faces.push_back(std::move(loop));
+    ++closed;
+  }
+  return closed;
+}
+
 }  // namespace
 
 std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
                                                 const RemeshParams& params, RemeshStats& stats) {
   const double s = params.edge_mm;
   // Samples about half a lattice step apart, so every lattice cell holds some.
-  const HalfedgeMesh mesh(resample(input, params.sample_ratio * s));
+  const HalfedgeMesh mesh(sample_surface(input, params.sample_ratio * s));
   const int nv = mesh.num_vertices();
   stats.samples = nv;
-  std::vector<Vec3> normals;
-  std::vector<Vec3> q = orientation_field(mesh, normals, params.orientation_iterations);
-  std::vector<std::vector<int>> neighbours(at(nv));
-  for (int h = 0; h < mesh.num_halfedges(); ++h) {
-    neighbours[at(mesh.from(h))].push_back(mesh.to(h));
-    if (mesh.twin(h) < 0) neighbours[at(mesh.to(h))].push_back(mesh.from(h));
-  }
-  // 4-PoSy smoothing (Instant Meshes §3.2, extrinsic): each lattice origin
-  // moves to the average of its neighbours' compatible lattice points, then
-  // snaps to the lattice point nearest its own sample.
-  std::vector<Vec3> origin(at(nv));
-  for (int v = 0; v < nv; ++v) origin[at(v)] = mesh.position(v);
-  for (int it = 0; it < params.position_iterations; ++it) {
-    for (int v = 0; v < nv; ++v) {
-      const Vec3& p = mesh.position(v);
-      const Vec3& n = normals[at(v)];
-      const Vec3& qv = q[at(v)];
-      Vec3 sum = origin[at(v)];
-      double weight = 0.0;
-      for (int w : neighbours[at(v)]) {
-        const Vec3 qw = closest_representative(q[at(w)], normals[at(w)], qv);
-        const auto [a, b] = compatible_positions(p, n, qv, sum, mesh.position(w), normals[at(w)],
-                                                 qw, origin[at(w)], s);
-        sum = (a * weight + b) / (weight + 1.0);
-        weight += 1.0;
-        sum -= n * n.dot(sum - p);
-      }
-      origin[at(v)] = lattice_round(sum, qv, n, p, s);
-    }
-  }
+  const std::vector<FieldGraph> levels = field_hierarchy(sample_graph(mesh));
+  const std::vector<std::vector<Vec3>> fields =
+      solve_orientation(levels, params.orientation_iterations);
+  const std::vector<Vec3>& normals = levels.front().normal;
+  const std::vector<Vec3>& q = fields.front();
+  const std::vector<Vec3> origin = solve_position(levels, fields, s, params.position_iterations);
   // Extraction: integer lattice offset along every sample edge.
   UnionFind collapse(at(nv));
   std::vector<std::pair<int, int>> unit_edges;
@@ -415,12 +751,11 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
     ++members[at(c)];
     if (mesh.is_boundary_vertex(v)) boundary[at(c)] = true;
   }
-  const int nc = static_cast<int>(position.size());
-  for (int c = 0; c < nc; ++c) {
-    position[at(c)] /= members[at(c)];
-    normal[at(c)].normalize();
+  for (std::size_t c = 0; c < position.size(); ++c) {
+    position[c] /= members[c];
+    normal[c].normalize();
   }
-  std::vector<std::vector<int>> adjacent(at(nc));
+  std::vector<std::vector<int>> adjacent(position.size());
   for (const auto& [i, j] : unit_edges) {
     const int a = cls[at(i)];
     const int b = cls[at(j)];
@@ -432,6 +767,8 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
   }
+  merge_short_edges(params.merge_below * s, position, normal, axis, boundary, adjacent);
+  const int nc = static_cast<int>(position.size());
   // Dangling edges bound no face: peel them off.
   for (bool changed = true; changed;) {
     changed = false;
@@ -522,8 +859,6 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
       for (auto& loop : loops) {
         if (!is_hole(loop)) out.faces.push_back(std::move(loop));
       }
-      continue;
-      out.faces.push_back(std::move(face));
     }
   }
   // Drop output vertices no face uses, and renumber.
@@ -546,8 +881,19 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
     stats.failure = "extracted mesh is not a clean surface: " + sink.diagnostics().front().message;
     return std::nullopt;
   }
-  const HalfedgeMesh result(compact);
   const HalfedgeMesh source(input);
+  if (HalfedgeMesh(compact).count_boundary_loops() > source.count_boundary_loops()) {
+    stats.holes_filled = fill_holes(compact, source.count_boundary_loops(), 16);
+    if (stats.holes_filled > 0) {
+      split_pinched_vertices(compact);
+      if (!check_mesh(compact, "remesh", sink)) {
+        stats.failure = "extracted mesh with its holes closed is not a clean surface: " +
+                        sink.diagnostics().front().message;
+        return std::nullopt;
+      }
+    }
+  }
+  const HalfedgeMesh result(compact);
   if (result.euler_characteristic() != source.euler_characteristic() ||
       result.count_boundary_loops() != source.count_boundary_loops()) {
     stats.failure = "extracted mesh has Euler characteristic " +

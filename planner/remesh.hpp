@@ -32,15 +32,17 @@ std::vector<Vec3> orientation_field(const HalfedgeMesh& mesh, std::vector<Vec3>&
                                     int iterations);
 
 struct RemeshParams {
-  double edge_mm = 1.0;  // lattice spacing: the target edge length
-  int orientation_iterations = 150;
-  int position_iterations = 150;
+  double edge_mm = 1.0;             // lattice spacing: the target edge length
+  int orientation_iterations = 30;  // smoothing sweeps per level of the hierarchy
+  int position_iterations = 30;
   double sample_ratio = 0.4;  // sample spacing as a fraction of edge_mm
+  double merge_below = 0.3;   // lattice edges shorter than this fraction of edge_mm are merged
 };
 
 struct RemeshStats {
-  int samples = 0;      // vertices of the sampled input the fields live on
-  std::string failure;  // why extraction gave no usable mesh (empty on success)
+  int samples = 0;       // vertices of the sampled input the fields live on
+  int holes_filled = 0;  // holes of the extraction closed by a polygon
+  std::string failure;   // why extraction gave no usable mesh (empty on success)
 };
 
 // A quad-dominant mesh of `input` (a checked surface; polygons are

@@ -77,6 +77,8 @@ CutReport report_from_json(const json& r) {
   report.proxy_edge_mm = proxy.value("edge_mm", 0.0);
   report.polygons_split = proxy.value("polygons_split", 0);
   report.triangles_paired = proxy.value("triangles_paired", 0);
+  report.samples = proxy.value("samples", 0);
+  report.holes_filled = proxy.value("holes_filled", 0);
   const json params = r.value("params", json::object());
   report.params.seed = params.value("seed", report.params.seed);
   report.params.cs = params.value("cs", report.params.cs);

@@ -114,6 +114,8 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
   report.proxy_edge_mm = proxy.edge_mm;
   report.polygons_split = proxy.polygons_split;
   report.triangles_paired = proxy.triangles_paired;
+  report.samples = proxy.samples;
+  report.holes_filled = proxy.holes_filled;
   report.proxy_method = proxy.method;
   report.remesh_failure = proxy.remesh_failure;
   report.proxy_seconds = seconds_since(start);
