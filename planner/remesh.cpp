@@ -2,6 +2,7 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
 #include <OpenMesh/Tools/Decimater/ModEdgeLengthT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
@@ -71,8 +73,12 @@ SurfaceMesh from_trimesh(TriMesh& tri) {
 }
 
 // Shortest edges collapse first until none is shorter than `target`; normal
-// flips are refused and OpenMesh's link condition keeps the topology.
-SurfaceMesh decimate(const SurfaceMesh& input, double target) {
+// flips are refused and OpenMesh's link condition keeps the topology. With
+// `guard_aspect`, a collapse may also not make the worst triangle around it
+// thinner than aspect ratio 10 unless it was already: slower, and used only
+// when the plain pass leaves a zero-area sliver (which happened at one scale
+// of a mesh and not at another, and made the samples depend on the units).
+SurfaceMesh decimate(const SurfaceMesh& input, double target, bool guard_aspect) {
   TriMesh tri = to_trimesh(input);
   tri.update_face_normals();
   tri.update_vertex_normals();
@@ -80,11 +86,18 @@ SurfaceMesh decimate(const SurfaceMesh& input, double target) {
     using Decimater = OpenMesh::Decimater::DecimaterT<TriMesh>;
     using EdgeLength = OpenMesh::Decimater::ModEdgeLengthT<TriMesh>::Handle;
     using NormalFlipping = OpenMesh::Decimater::ModNormalFlippingT<TriMesh>::Handle;
+    using AspectRatio = OpenMesh::Decimater::ModAspectRatioT<TriMesh>::Handle;
     Decimater decimater(tri);
     EdgeLength edge_length;
     NormalFlipping normal_flipping;
+    AspectRatio aspect_ratio;
     decimater.add(edge_length);
     decimater.add(normal_flipping);
+    if (guard_aspect) {
+      decimater.add(aspect_ratio);
+      decimater.module(aspect_ratio).set_binary(true);
+      decimater.module(aspect_ratio).set_aspect_ratio(10.0);
+    }
     decimater.module(edge_length).set_edge_length(target);
     decimater.module(edge_length).set_binary(false);
     decimater.module(normal_flipping).set_max_normal_deviation(60.0);
@@ -92,6 +105,17 @@ SurfaceMesh decimate(const SurfaceMesh& input, double target) {
     decimater.decimate();
   }
   return from_trimesh(tri);
+}
+
+// `decimate`, checked; once more with the aspect guard if the plain pass
+// leaves a degenerate face; nothing if that fails too.
+std::optional<SurfaceMesh> checked_decimation(const SurfaceMesh& input, double target) {
+  for (const bool guard_aspect : {false, true}) {
+    SurfaceMesh decimated = decimate(input, target, guard_aspect);
+    knitout::DiagnosticSink sink;
+    if (check_mesh(decimated, "resample", sink)) return decimated;
+  }
+  return std::nullopt;
 }
 
 // Every edge longer than `max_length` is split at its midpoint (with the
@@ -172,20 +196,14 @@ SurfaceMesh resample(const SurfaceMesh& input, double target_mm, double keep_abo
   while (mean_edge_length(tri) > 2.0 * target_mm && tri.faces.size() < 4000000)
     tri = subdivide(tri);
   if (mean_edge_length(tri) < keep_above * target_mm) {
-    SurfaceMesh decimated = decimate(tri, target_mm);
-    knitout::DiagnosticSink sink;
     // OpenMesh keeps the topology; should a collapse still leave a fold, the
     // finer mesh is the safe answer.
-    if (check_mesh(decimated, "resample", sink)) tri = std::move(decimated);
+    std::optional<SurfaceMesh> decimated = checked_decimation(tri, target_mm);
+    if (decimated) tri = std::move(*decimated);
   }
   return tri;
 }
 
-// The samples the fields live on: `resample`, then every edge longer than
-// 1.25 * target_mm split. Where that leaves many edges shorter than half the
-// target (a fifth of them or more: a CAD mesh's slivers, cut up by the
-// subdivision and the splits),
-// the short ones collapse and the lengthened ones are split again.
 SurfaceMesh sample_surface(const SurfaceMesh& input, double target_mm) {
   SurfaceMesh tri = split_long_edges(resample(input, target_mm), 1.25 * target_mm);
   std::size_t edges = 0;
@@ -199,10 +217,9 @@ SurfaceMesh sample_surface(const SurfaceMesh& input, double target_mm) {
     }
   }
   if (short_edges * 5 <= edges) return tri;
-  SurfaceMesh decimated = decimate(tri, 0.7 * target_mm);
-  knitout::DiagnosticSink sink;
-  if (!check_mesh(decimated, "resample", sink)) return tri;
-  return split_long_edges(decimated, 1.25 * target_mm);
+  std::optional<SurfaceMesh> decimated = checked_decimation(tri, 0.7 * target_mm);
+  if (!decimated) return tri;
+  return split_long_edges(*decimated, 1.25 * target_mm);
 }
 
 // The representative of the 4-fold direction (o, n x o, -o, -n x o) closest to `target`.

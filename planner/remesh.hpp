@@ -23,6 +23,13 @@ namespace planner {
 // normal flips are refused). The result is checked like any input.
 SurfaceMesh resample(const SurfaceMesh& input, double target_mm, double keep_above = 0.5);
 
+// The samples the remesher's fields live on: `resample`, then every edge
+// longer than 1.25 * target_mm split at its midpoint; where a fifth of the
+// edges or more are shorter than half the target (slivers of a CAD mesh cut
+// up by subdivision and splits) they are collapsed and the long ones split
+// again. Scaling the input and the target together scales the result.
+SurfaceMesh sample_surface(const SurfaceMesh& input, double target_mm);
+
 // Of the four directions o, n x o, -o, -n x o: the one closest to `target`.
 Vec3 closest_representative(const Vec3& o, const Vec3& n, const Vec3& target);
 

@@ -6,7 +6,7 @@
 // a figure are named below with the bound they are held to instead, and
 // docs/stitch-mesh.md says why.
 //
-// Triangle inputs are remeshed by the cut stage first, which takes 15-60 s
+// Triangle inputs are remeshed by the cut stage first, which takes 2-30 s
 // per mesh; under the sanitizers (scripts/test.sh's second run) those meshes
 // are skipped with a message saying so, and the strict build checks them.
 #include <gtest/gtest.h>
@@ -61,7 +61,7 @@ struct Limits {
 const std::map<std::string, Limits>& below_target() {
   // clang-format off
   static const std::map<std::string, Limits> limits = {
-      {"anchor", {.within = 0.83, .wale_within = 0.66, .stitches = 0.25}},
+      {"anchor", {.wale_within = 0.85}},
       {"armadillo", {.wale_within = 0.73, .stitches = 0.13}},
       {"armadillo-qd", {.within = 0.84, .wale_within = 0.66, .stitches = 0.20}},
       {"bunny", {.wale_mean = 0.10, .wale_within = 0.85}},
