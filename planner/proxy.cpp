@@ -39,19 +39,6 @@ std::vector<int> rotate_to(const std::vector<int>& face, std::size_t start) {
   return out;
 }
 
-double total_area(const SurfaceMesh& mesh) {
-  double area = 0.0;
-  for (const auto& face : mesh.faces) {
-    Vec3 n = Vec3::Zero();
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      n += mesh.positions[static_cast<std::size_t>(face[i])].cross(
-          mesh.positions[static_cast<std::size_t>(face[(i + 1) % face.size()])]);
-    }
-    area += 0.5 * n.norm();
-  }
-  return area;
-}
-
 // How far edge direction `e` is from the field (0 aligned, up to ~0.29 at 45 degrees).
 double misalignment(const Vec3& e, const Vec3& o, const Vec3& n) {
   const Vec3 d = e.normalized();
@@ -139,6 +126,19 @@ bool is_valid_proxy(const SurfaceMesh& mesh) {
 }
 
 }  // namespace
+
+double total_area(const SurfaceMesh& mesh) {
+  double area = 0.0;
+  for (const auto& face : mesh.faces) {
+    Vec3 n = Vec3::Zero();
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      n += mesh.positions[static_cast<std::size_t>(face[i])].cross(
+          mesh.positions[static_cast<std::size_t>(face[(i + 1) % face.size()])]);
+    }
+    area += 0.5 * n.norm();
+  }
+  return area;
+}
 
 bool is_quad_dominant(const SurfaceMesh& mesh) {
   std::size_t quads = 0;

@@ -44,6 +44,9 @@ struct ProxyResult {
 // More than half of the faces are quads.
 bool is_quad_dominant(const SurfaceMesh& mesh);
 
+// Sum of the faces' areas (each polygon by its vector area).
+double total_area(const SurfaceMesh& mesh);
+
 // Splits every face with more than 4 corners in place; returns how many were split.
 int split_polygons(SurfaceMesh& mesh);
 

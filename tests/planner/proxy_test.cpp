@@ -115,18 +115,7 @@ TEST(ProxyTest, SamplingDoesNotDependOnTheUnits) {
   SurfaceMesh large = *unit;
   for (Vec3& p : large.positions) p *= 100.0;
   // The remesher's sample spacing for each: 0.4 x sqrt(area / 3000).
-  auto spacing = [](const SurfaceMesh& mesh) {
-    double area = 0.0;
-    for (const auto& face : mesh.faces) {
-      Vec3 n = Vec3::Zero();
-      for (std::size_t i = 0; i < face.size(); ++i) {
-        n += mesh.positions[static_cast<std::size_t>(face[i])].cross(
-            mesh.positions[static_cast<std::size_t>(face[(i + 1) % face.size()])]);
-      }
-      area += 0.5 * n.norm();
-    }
-    return 0.4 * std::sqrt(area / 3000.0);
-  };
+  auto spacing = [](const SurfaceMesh& mesh) { return 0.4 * std::sqrt(total_area(mesh) / 3000.0); };
   const SurfaceMesh small_samples = sample_surface(*unit, spacing(*unit));
   const SurfaceMesh large_samples = sample_surface(large, spacing(large));
   const double ratio = static_cast<double>(large_samples.positions.size()) /
