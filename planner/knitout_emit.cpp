@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -163,27 +164,49 @@ class Emitter {
     ++result_.stats.transfers;
   }
   // A bind-off tail on a needle this row needs moves to a needle needed
-  // later or never (park); only when no needle within the racking limit is
-  // free is it dropped (which lets its chain unravel: V053).
-  // `knit_through`: this row knits needle n with room for the tail in the
-  // stack; a tail with nowhere to wait then stays and is knit through with
-  // the stitch's loops, which holds its chain as a holder would.
-  // Returns true when the tail stays to be knit through.
-  bool drop_tail(int n, bool knit_through) {
+  // later or never (park); failing that it joins a live loop nearby
+  // (holding_needle), or waits on a needle this row knits with room in the
+  // stack, to be knit through with the stitch's loops, which holds its chain
+  // as a holder would: its own (`knit_through`) or, when `elsewhere`,
+  // another within the racking limit (`stay_`). Only when none of these
+  // exists is it dropped (which lets its chain unravel: V053).
+  // Returns the needle where the tail stays to be knit through, or kNoNeedle.
+  int drop_tail(int n, bool knit_through, bool elsewhere) {
     auto& loops = front_[n];
-    if (std::find(loops.begin(), loops.end(), kTail) == loops.end()) return false;
+    if (std::find(loops.begin(), loops.end(), kTail) == loops.end()) return kNoNeedle;
     if (std::any_of(loops.begin(), loops.end(), [](int t) { return t != kTail; }))
       throw std::logic_error("a bind-off tail shares f" + std::to_string(n) + " with other loops");
     const int to = parking_needle(n, row_index_ - 1, +1);
     if (to != n) {
       move_loop(n, to);
-      return false;
+      return kNoNeedle;
     }
-    if (knit_through) return true;
+    if (knit_through) return n;
+    const Holder holder = holding_needle(n);
+    if (holder.needle != n) {
+      // The tail joins a live loop that waits there: the stitch that later
+      // knits that loop holds the chain, as the holder of a chain does.
+      if (holder.via != kNoNeedle) move_loop(n, holder.via);
+      move_loop(holder.via != kNoNeedle ? holder.via : n, holder.needle);
+      relabel(holder.needle, front_[holder.needle].front());
+      return kNoNeedle;
+    }
+    if (elsewhere) {
+      for (int d = 1; d <= 8; ++d) {
+        for (int w : {n + d, n - d}) {
+          const auto room = stay_.find(w);
+          if (room == stay_.end() || room->second == 0) continue;
+          if (!front_[w].empty() || !back_[w].empty()) continue;
+          room->second = 0;
+          move_loop(n, w);
+          return w;
+        }
+      }
+    }
     touch(PassKey{'d', 0, racking_}, n);
     line("drop f" + std::to_string(n));
     loops.clear();
-    return false;
+    return kNoNeedle;
   }
   // The first row after row `after` that needs needle n (INT_MAX: none).
   int next_use(int n, int after) const {
@@ -214,6 +237,51 @@ class Emitter {
       }
     }
     return best;
+  }
+  // Where a tail on `from` that cannot wait on an empty needle can join a
+  // live loop instead: the nearest front needle holding only live loops with
+  // room for one more and nothing on the back, either untouched by the
+  // current row (`row_needles_`), or one whose loops go to a single needle of
+  // the row (`destination_`, possibly their own) that can take one more loop,
+  // where the row's stitch knits the tail through. Within the racking limit
+  // in one move; up to twice as far in two, through a needle empty on both
+  // beds. `from` when none.
+  struct Holder {
+    int needle = 0;
+    int via = kNoNeedle;  // the stop of a two-move way
+  };
+  Holder holding_needle(int from) {
+    const auto empty = [&](const std::map<int, std::vector<int>>& bed, int n) {
+      const auto it = bed.find(n);
+      return it == bed.end() || it->second.empty();
+    };
+    for (int d = 1; d <= 16; ++d) {
+      for (int n : {from + d, from - d}) {
+        const auto it = front_.find(n);
+        if (it == front_.end() || it->second.empty() || it->second.size() >= kMaxLoops) continue;
+        if (std::any_of(it->second.begin(), it->second.end(), [](int t) { return t < 0; }))
+          continue;
+        if (!empty(back_, n)) continue;
+        int via = kNoNeedle;
+        if (d > 8) {
+          const int step = n > from ? 1 : -1;
+          for (int k = 8; k >= d - 8 && via == kNoNeedle; --k) {
+            const int m = from + step * k;
+            if (empty(front_, m) && empty(back_, m)) via = m;
+          }
+          if (via == kNoNeedle) continue;
+        }
+        if (row_needles_.count(n) != 0) {
+          const auto to = destination_.find(n);
+          if (to == destination_.end() || to->second == kNoNeedle) continue;
+          std::size_t& stack = arriving_[to->second];
+          if (stack >= kMaxLoops) continue;
+          ++stack;
+        }
+        return {n, via};
+      }
+    }
+    return {from, kNoNeedle};
   }
   void move_loop(int from, int to) {
     end_pass();
@@ -340,7 +408,7 @@ class Emitter {
     }
     // Bind-off tails on the needles this row needs are moved away first, or
     // knit through where this row knits and the stack has room.
-    std::map<int, std::size_t> arriving;  // work needle -> loops the transfers bring
+    arriving_.clear();  // work needle -> loops the transfers bring
     {
       std::map<int, std::vector<int>> from;
       for (const LoopMove& m : moves) {
@@ -348,8 +416,26 @@ class Emitter {
         if (std::find(list.begin(), list.end(), m.from) == list.end()) list.push_back(m.from);
       }
       for (const auto& [to, list] : from) {
-        for (int n : list) arriving[to] += front_[n].size();
+        for (int n : list) arriving_[to] += front_[n].size();
       }
+    }
+    row_needles_.clear();
+    for (const LoopMove& m : moves) row_needles_.insert({m.from, m.to});
+    for (int f : faces) {
+      for (int e : s_.faces[static_cast<std::size_t>(f)].out) row_needles_.insert(needle(e));
+    }
+    destination_.clear();  // source needle -> where its loops go (kNoNeedle: several places)
+    for (const LoopMove& m : moves) {
+      const auto [it, added] = destination_.emplace(m.from, m.to);
+      if (!added && it->second != m.to) it->second = kNoNeedle;
+    }
+    stay_.clear();  // empty work needles whose stack has room for a tail
+    for (int f : faces) {
+      const int w = work(f);
+      if (!front_[w].empty() || !back_[w].empty()) continue;
+      const std::size_t cast_on = arriving_.count(w) == 0 ? 1 : 0;
+      const auto it = arriving_.find(w);
+      if ((it == arriving_.end() ? 0 : it->second) + cast_on + 1 <= kMaxLoops) stay_[w] = 1;
     }
     std::vector<int> kept;  // tails left to be knit through
     for (int f : faces) {
@@ -358,8 +444,9 @@ class Emitter {
         const int n = needle(out[k]);
         const auto it = front_.find(n);
         const std::size_t tail = it == front_.end() ? 0 : it->second.size();
-        const std::size_t cast_on = arriving.count(n) == 0 ? 1 : 0;  // its tuck
-        if (drop_tail(n, k == 0 && arriving[n] + tail + cast_on <= kMaxLoops)) kept.push_back(n);
+        const std::size_t cast_on = arriving_.count(n) == 0 ? 1 : 0;  // its tuck
+        const int stays = drop_tail(n, k == 0 && arriving_[n] + tail + cast_on <= kMaxLoops, true);
+        if (stays != kNoNeedle) kept.push_back(stays);
       }
     }
     std::map<int, bool> moving;
@@ -386,7 +473,7 @@ class Emitter {
       plan = plan_transfers();
     } catch (const std::logic_error&) {
       if (kept.empty()) throw;
-      for (int n : kept) drop_tail(n, false);
+      for (int n : kept) drop_tail(n, false, false);
       knit_first = consolidation(moves);
       plan = plan_transfers();
     }
@@ -607,6 +694,10 @@ class Emitter {
   std::map<int, int> where_;              // course edge -> front needle of its loop
   std::map<int, std::vector<int>> uses_;  // needle -> rows (indices in the piece) that need it
   int row_index_ = 0;
+  std::set<int> row_needles_;            // needles the current row moves loops from or to, or knits
+  std::map<int, std::size_t> arriving_;  // the current row's work needles -> loops arriving
+  std::map<int, int> stay_;  // the current row's empty work needles -> room for a tail (0 or 1)
+  std::map<int, int> destination_;  // the current row's source needles -> their loops' work needle
 };
 
 }  // namespace
