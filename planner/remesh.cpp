@@ -464,7 +464,10 @@ std::pair<Vec3, Vec3> compatible_positions(const Vec3& p0, const Vec3& n0, const
 }
 
 // A vertex whose faces form several fans (sheets touching at a point) gets
-// one copy per fan, so the surface becomes a manifold there.
+// one copy per fan, so the surface becomes a manifold there. Each copy, and
+// the vertex itself, is then moved 2% of the way to its fan's centre, so
+// the sheets no longer touch: later stages that weld the cut mesh's two
+// sides by position (the wearability stage) must not merge them again.
 void split_pinched_vertices(SurfaceMesh& mesh) {
   std::vector<int> start(mesh.faces.size() + 1, 0);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
@@ -485,6 +488,7 @@ void split_pinched_vertices(SurfaceMesh& mesh) {
   }
   std::vector<int> owner(mesh.positions.size(), -1);  // fan root that keeps the original vertex
   std::map<int, int> copy_of_root;
+  std::vector<int> split;  // the vertices split and their copies
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     for (std::size_t i = 0; i < mesh.faces[f].size(); ++i) {
       int& v = mesh.faces[f][i];
@@ -492,9 +496,32 @@ void split_pinched_vertices(SurfaceMesh& mesh) {
       if (owner[at(v)] < 0) owner[at(v)] = root;
       if (owner[at(v)] == root) continue;
       auto [it, inserted] = copy_of_root.emplace(root, static_cast<int>(mesh.positions.size()));
-      if (inserted) mesh.positions.push_back(mesh.positions[at(v)]);
+      if (inserted) {
+        mesh.positions.push_back(mesh.positions[at(v)]);
+        split.push_back(v);
+        split.push_back(it->second);
+      }
       v = it->second;
     }
+  }
+  if (split.empty()) return;
+  std::vector<Vec3> centre(mesh.positions.size(), Vec3::Zero());
+  std::vector<int> count(mesh.positions.size(), 0);
+  for (const auto& face : mesh.faces) {
+    Vec3 c = Vec3::Zero();
+    for (int v : face) c += mesh.positions[at(v)];
+    c /= static_cast<double>(face.size());
+    for (int v : face) {
+      centre[at(v)] += c;
+      ++count[at(v)];
+    }
+  }
+  std::sort(split.begin(), split.end());
+  split.erase(std::unique(split.begin(), split.end()), split.end());
+  for (int v : split) {
+    if (count[at(v)] == 0) continue;
+    Vec3& p = mesh.positions[at(v)];
+    p += 0.02 * (centre[at(v)] / count[at(v)] - p);
   }
 }
 

@@ -23,6 +23,7 @@
 #include "planner/stitch_mesh.hpp"
 #include "planner/stitch_mesh_io.hpp"
 #include "planner/stitch_mesh_remesh.hpp"
+#include "planner/wearability.hpp"
 #include "tests/planner/stitch_discs.hpp"
 #include "tests/test_support.hpp"
 
@@ -122,6 +123,15 @@ LabelledDisc cut_shared(const std::filesystem::path& file) {
   // Issue 6: every triangle input is remeshed along its field (no fallback
   // to pairing triangles).
   EXPECT_EQ(proxy.method, quad_input ? "input" : "instant-meshes") << file << proxy.remesh_failure;
+  // No two proxy vertices at one point (a pinch split by the remesher is
+  // pulled apart): the wearability stage welds the cut mesh's two sides by
+  // position, which must give back this surface.
+  {
+    std::vector<Vec3> points = proxy.mesh.positions;
+    std::vector<std::vector<int>> faces = proxy.mesh.faces;
+    weld_vertices(points, faces, 1e-9 * 100.0 * std::sqrt(3.0));
+    EXPECT_EQ(points.size(), proxy.mesh.positions.size()) << file << ": coincident proxy vertices";
+  }
   const CutMesh cut = cut_surface(HalfedgeMesh(std::move(proxy.mesh)), CutParams{});
   LabelledDisc disc = labelled_disc(cut);
   EXPECT_TRUE(check_disc(disc).empty()) << file;
