@@ -471,10 +471,11 @@ void assign_needles(const StitchMesh& mesh, Schedule& s) {
   }
 }
 
-std::vector<int> random_patch_order(const Schedule& s, std::uint64_t seed, std::uint64_t trial) {
-  const std::size_t np = s.patches.size();
-  std::vector<std::vector<int>> succ(np);
-  std::vector<int> indeg(np, 0);
+namespace {
+
+// The patch graph: successors of each patch (sorted, no repeats).
+std::vector<std::vector<int>> patch_successors(const Schedule& s) {
+  std::vector<std::vector<int>> succ(s.patches.size());
   for (std::size_t r = 0; r < s.rows.size(); ++r) {
     const int a = s.rows[r].patch;
     for (int v : s.row_successors[r]) {
@@ -485,6 +486,17 @@ std::vector<int> random_patch_order(const Schedule& s, std::uint64_t seed, std::
   for (auto& list : succ) {
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return succ;
+}
+
+}  // namespace
+
+std::vector<int> random_patch_order(const Schedule& s, std::uint64_t seed, std::uint64_t trial) {
+  const std::size_t np = s.patches.size();
+  const std::vector<std::vector<int>> succ = patch_successors(s);
+  std::vector<int> indeg(np, 0);
+  for (const auto& list : succ) {
     for (int b : list) ++indeg[static_cast<std::size_t>(b)];
   }
   std::mt19937_64 rng(mix(seed, trial));
@@ -661,6 +673,81 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
   return cuts;
 }
 
+int improve_order(const Schedule& s, std::vector<int>& order, int max_shift, int max_moves) {
+  const std::vector<std::vector<int>> succ = patch_successors(s);
+  std::vector<std::vector<int>> pred(succ.size());
+  for (std::size_t a = 0; a < succ.size(); ++a) {
+    for (int b : succ[a]) pred[static_cast<std::size_t>(b)].push_back(static_cast<int>(a));
+  }
+  // `p` taken out of `order` and put back at the earliest place its
+  // predecessors allow (`earliest`), or the latest its successors allow.
+  const auto moved = [&](const std::vector<int>& from, int p, bool earliest) {
+    std::vector<int> out;
+    out.reserve(from.size());
+    for (int q : from) {
+      if (q != p) out.push_back(q);
+    }
+    std::vector<int> pos(succ.size());
+    for (std::size_t i = 0; i < out.size(); ++i)
+      pos[static_cast<std::size_t>(out[i])] = static_cast<int>(i);
+    std::size_t at = earliest ? 0 : out.size();
+    if (earliest) {
+      for (int q : pred[static_cast<std::size_t>(p)])
+        at = std::max(at, static_cast<std::size_t>(pos[static_cast<std::size_t>(q)]) + 1);
+    } else {
+      for (int q : succ[static_cast<std::size_t>(p)])
+        at = std::min(at, static_cast<std::size_t>(pos[static_cast<std::size_t>(q)]));
+    }
+    out.insert(out.begin() + static_cast<std::ptrdiff_t>(at), p);
+    return out;
+  };
+  std::vector<std::pair<int, int>> cuts = simulate_order(s, order, max_shift);
+  int moves = 0;
+  bool improved = true;
+  while (improved && moves < max_moves) {
+    improved = false;
+    for (const auto& [lower, upper] : std::vector<std::pair<int, int>>(cuts)) {
+      // The loops of `lower` were covered before `upper` took them: knit
+      // the consumer as early as it can go, or the producer as late.
+      for (const auto& [p, earliest] :
+           {std::pair{s.rows[static_cast<std::size_t>(upper)].patch, true},
+            std::pair{s.rows[static_cast<std::size_t>(lower)].patch, false}}) {
+        if (moves >= max_moves) break;
+        std::vector<int> candidate = moved(order, p, earliest);
+        if (candidate == order) continue;
+        ++moves;
+        std::vector<std::pair<int, int>> fewer = simulate_order(s, candidate, max_shift);
+        if (fewer.size() < cuts.size()) {
+          order = std::move(candidate);
+          cuts = std::move(fewer);
+          improved = true;
+          break;
+        }
+      }
+      if (improved) break;
+    }
+    if (improved || cuts.empty()) continue;
+    // No move of a cut's own patches helps: try every patch.
+    for (int p : std::vector<int>(order)) {
+      for (bool earliest : {true, false}) {
+        if (moves >= max_moves) break;
+        std::vector<int> candidate = moved(order, p, earliest);
+        if (candidate == order) continue;
+        ++moves;
+        std::vector<std::pair<int, int>> fewer = simulate_order(s, candidate, max_shift);
+        if (fewer.size() < cuts.size()) {
+          order = std::move(candidate);
+          cuts = std::move(fewer);
+          improved = true;
+          break;
+        }
+      }
+      if (improved) break;
+    }
+  }
+  return static_cast<int>(cuts.size());
+}
+
 void choose_order(Schedule& s, const ScheduleParams& params) {
   const auto start = std::chrono::steady_clock::now();
   const bool by_time = params.time_budget_s > 0;
@@ -701,6 +788,35 @@ void choose_order(Schedule& s, const ScheduleParams& params) {
                        [](const TrialResult& a, const TrialResult& b) { return a.cuts < b.cuts; });
   s.best_trial = best->trial;
   s.patch_order = random_patch_order(s, params.seed, best->trial);
+  s.random_cuts = best->cuts;
+  // Local search (improve_order) from the best random orders, in parallel;
+  // the result depends only on the ranking, not on the threads.
+  std::vector<TrialResult> ranked = results;
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const TrialResult& a, const TrialResult& b) { return a.cuts < b.cuts; });
+  ranked.resize(std::min(ranked.size(), static_cast<std::size_t>(std::max(0, params.improve))));
+  std::vector<std::vector<int>> improved(ranked.size());
+  std::vector<int> improved_cuts(ranked.size(), 0);
+  std::atomic<std::size_t> next_order{0};
+  auto refine = [&] {
+    for (std::size_t i = next_order.fetch_add(1); i < ranked.size(); i = next_order.fetch_add(1)) {
+      improved[i] = random_patch_order(s, params.seed, ranked[i].trial);
+      improved_cuts[i] =
+          improve_order(s, improved[i], params.max_patch_shift, params.improve_moves);
+    }
+  };
+  pool.clear();
+  for (unsigned i = 1; i < threads && i < ranked.size(); ++i) pool.emplace_back(refine);
+  refine();
+  for (auto& th : pool) th.join();
+  // The fewest cuts (ties: the better-ranked start). The first start is the
+  // best random order itself, which the search never makes worse.
+  if (!ranked.empty()) {
+    const auto i = static_cast<std::size_t>(
+        std::min_element(improved_cuts.begin(), improved_cuts.end()) - improved_cuts.begin());
+    s.patch_order = std::move(improved[i]);
+    s.best_trial = ranked[i].trial;
+  }
   std::vector<int> shift;
   s.cut_rows = simulate_order(s, s.patch_order, params.max_patch_shift, &shift);
   s.cuts = static_cast<int>(s.cut_rows.size());

@@ -78,6 +78,10 @@ struct ScheduleParams {
   std::uint64_t seed = 1;                // every random choice derives from it and the trial number
   int threads = 0;                       // 0: all cores
   int max_patch_shift = kMaxPatchShift;  // 0: patches stay where §7.2 put them
+  // The best random orders refined by improve_order (0: §7.3's random
+  // orders only), and the orders simulated per refinement, at most.
+  int improve = 8;
+  int improve_moves = 1000;
 };
 
 struct Piece {
@@ -104,8 +108,9 @@ struct Schedule {
   std::vector<int> patch_order;     // §7.3: the order kept
   std::vector<int> patch_shift;     // §7.3: needles each patch was moved (already in the edges)
   std::vector<TrialResult> trials;  // every order tried, in trial order
-  std::uint64_t best_trial = 0;
-  int cuts = 0;                               // cuts of the kept order (row pairs separated)
+  std::uint64_t best_trial = 0;     // the random order kept, or refined into the kept one
+  int random_cuts = 0;              // cuts of the best random order, before improve_order
+  int cuts = 0;                     // cuts of the kept order (row pairs separated)
   std::vector<std::pair<int, int>> cut_rows;  // (lower row, upper row) per cut
   std::vector<Piece> pieces;
 };
@@ -137,9 +142,18 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& schedule,
 std::vector<int> random_patch_order(const Schedule& schedule, std::uint64_t seed,
                                     std::uint64_t trial);
 
+// After §7.3's random orders: a local search from `order`. For each cut
+// (lower row, upper row), the upper row's patch is moved as early as its
+// predecessors allow, or the lower row's as late as its successors allow; a
+// move that leaves fewer cuts is kept, and the search starts again, until no
+// move helps or `max_moves` orders have been simulated. Deterministic.
+// Returns the cuts of the order left in `order`.
+int improve_order(const Schedule& schedule, std::vector<int>& order, int max_shift, int max_moves);
+
 // §7.3: tries orders (in parallel; the result depends only on params.seed and
-// the number of trials, not on the threads), keeps the one with fewest cuts
-// (ties: lowest trial number), marks the cut edges.
+// the number of trials, not on the threads), refines the params.improve best
+// of them (improve_order) and keeps the one with fewest cuts (ties: the
+// better random order, then the lowest trial number), marks the cut edges.
 void choose_order(Schedule& schedule, const ScheduleParams& params);
 
 // Connected parts once cuts are made; rows in knitting order.

@@ -70,7 +70,8 @@ int run_plan(const std::vector<std::string>& args, Context& context) {
        "wearability: re-cuts with other seeds when not wearable (default 3)"}};
   static const std::vector<Passed> kSchedule = {
       {"trials", "trials", "schedule: random knitting orders to try (default 100)"},
-      {"time-budget", "time-budget", "schedule: seconds for orders instead of --trials"}};
+      {"time-budget", "time-budget", "schedule: seconds for orders instead of --trials"},
+      {"improve", "improve", "schedule: best random orders refined by local search (default 8)"}};
   for (const auto* group : {&kCut, &kStitch, &kWear, &kSchedule}) {
     for (const Passed& p : *group)
       options.add_options()(p.plan_name, po::value<std::string>(), p.help);

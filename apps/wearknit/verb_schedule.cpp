@@ -53,6 +53,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   std::uint64_t seed = 1;
   int threads = 0;
   int max_shift = planner::kMaxPatchShift;
+  int improve = planner::ScheduleParams{}.improve;
   std::string format_name;
   po::options_description options("options");
   options.add_options()("dir", po::value<std::string>(&dir)->required(),
@@ -68,6 +69,9 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
       "threads for the trials (0: all cores); results depend only on the seed and trials")(
       "max-shift", po::value<int>(&max_shift)->default_value(planner::kMaxPatchShift),
       "needles a patch may be moved sideways to clear held loops (0 to 8)")(
+      "improve", po::value<int>(&improve)->default_value(improve),
+      "best random orders refined by a local search that moves the patches of each cut "
+      "(0: random orders only, as in §7.3)")(
       "format", po::value<std::string>(&format_name)->default_value("text"),
       "diagnostics as text (stderr) or json (stdout)")("json", "same as --format json")(
       "quiet,q", "print nothing on success");
@@ -90,6 +94,10 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   }
   if (trials < 1) {
     context.err << "wearknit schedule: --trials must be at least 1\n";
+    return kExitUsage;
+  }
+  if (improve < 0) {
+    context.err << "wearknit schedule: --improve must not be negative\n";
     return kExitUsage;
   }
   if (max_shift < 0 || max_shift > 8) {
@@ -133,6 +141,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   params.seed = seed;
   params.threads = threads;
   params.max_patch_shift = max_shift;
+  params.improve = improve;
   planner::Schedule schedule;
   std::vector<planner::EmittedPiece> pieces;
   try {
@@ -307,6 +316,8 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
       {"trials", schedule.trials.size()},
       {"cuts_per_trial", trials_json},
       {"best_trial", schedule.best_trial},
+      {"random_cuts", schedule.random_cuts},
+      {"improve", improve},
       {"cuts", schedule.cuts},
       {"max_shift", max_shift},
       {"patches_moved", std::count_if(schedule.patch_shift.begin(), schedule.patch_shift.end(),

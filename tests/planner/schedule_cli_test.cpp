@@ -158,6 +158,28 @@ TEST(ScheduleCliTest, MaxShiftIsReported) {
   EXPECT_EQ(report["schedule"]["cuts"], 1);
 }
 
+TEST(ScheduleCliTest, NegativeImproveIsAUsageError) {
+  const fs::path dir = plan_folder(fixtures::rectangle(3, 2), "sched-improve");
+  const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --improve -1");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.err, "wearknit schedule: --improve must not be negative\n");
+}
+
+TEST(ScheduleCliTest, ImproveAndTheRandomOrdersCutsAreReported) {
+  const fs::path dir = plan_folder(fixtures::crossing_branches(12, 3, 10), "sched-improve-ok");
+  for (int improve : {0, 3}) {
+    const auto result = wearknit::test::run_wearknit(
+        "schedule " + dir.string() + " --trials 8 --improve " + std::to_string(improve) + " -q");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const json report = json::parse(wearknit::test::read_file(dir / "report.json"));
+    EXPECT_EQ(report["schedule"]["improve"], improve);
+    EXPECT_GE(report["schedule"]["random_cuts"].get<int>(), report["schedule"]["cuts"].get<int>());
+    if (improve == 0) {
+      EXPECT_EQ(report["schedule"]["random_cuts"], report["schedule"]["cuts"]);
+    }
+  }
+}
+
 TEST(ScheduleCliTest, TimeBudgetAloneIsAccepted) {
   const fs::path dir = plan_folder(fixtures::rectangle(3, 2), "sched-budget");
   const auto result =

@@ -28,6 +28,7 @@
 #include "backends/dat/raster.hpp"
 #include "knitout/parser.hpp"
 #include "planner/cut.hpp"
+#include "planner/cut_io.hpp"
 #include "planner/knitout_emit.hpp"
 #include "planner/mesh_io.hpp"
 #include "planner/proxy.hpp"
@@ -85,15 +86,12 @@ std::size_t subdivided_faces(const StitchMesh& mesh, const Schedule& s, const Pi
   return n;
 }
 
-class ScheduleSharedTest : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOrder) {
-  WEARKNIT_REQUIRE_SHARED(shared);
-  const std::string name = GetParam();
-  const fs::path file = shared / "meshes" / (name + ".obj");
-  ASSERT_TRUE(fs::exists(file)) << file;
-
-  // cut -> stitch-mesh, as `wearknit cut --scale` and `wearknit stitch-mesh`.
+// The stitch mesh of a shared mesh: scaled to 100 mm along its longest side,
+// cut and stitch-meshed with the defaults, each written and read back, as
+// `wearknit cut --scale`, `wearknit stitch-mesh` and `wearknit schedule` do.
+// Skips (triangle input under the sanitizers, known failures) and fails
+// through gtest; `mesh` is set on success.
+void stitch_shared(const fs::path& file, const std::string& name, std::optional<StitchMesh>& mesh) {
   knitout::DiagnosticSink load_sink;
   std::optional<SurfaceMesh> surface = load_mesh(file.string(), {}, load_sink);
   ASSERT_TRUE(surface) << file;
@@ -113,8 +111,16 @@ TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOr
   const Vec3 size = bounding_box_size(*surface);
   for (Vec3& p : surface->positions) p *= 100.0 / size.maxCoeff();
   ProxyResult proxy = make_proxy(*surface, ProxyParams{});
+  // The cut folder is written and read back, as between the stages of
+  // `wearknit plan` (the stitch mesh depends on the rounding of the files).
   const CutMesh cut = cut_surface(HalfedgeMesh(std::move(proxy.mesh)), CutParams{});
-  const LabelledDisc disc = labelled_disc(cut);
+  const fs::path dir = wearknit::test::make_temp_dir("schedule_shared");
+  ASSERT_EQ(write_cut_result(dir.string(), cut, CutReport{}), "") << name;
+  knitout::DiagnosticSink cut_sink;
+  const std::optional<CutMesh> cut_back = read_cut_result(dir.string(), cut_sink);
+  fs::remove_all(dir);
+  ASSERT_TRUE(cut_back) << name << ": " << knitout::format(cut_sink.diagnostics().front());
+  const LabelledDisc disc = labelled_disc(*cut_back);
   ASSERT_TRUE(check_disc(disc).empty()) << name << ": the cut is not a disc";
   const AnisoRemeshResult stitched = remesh_anisotropic(disc, AnisoRemeshParams{});
   if (!stitched.problems.empty()) {
@@ -125,8 +131,21 @@ TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOr
   write_smobj(written, stitched.mesh);
   std::istringstream text(written.str());
   knitout::DiagnosticSink read_sink;
-  const std::optional<StitchMesh> mesh = parse_smobj(text, name + ".smobj", read_sink);
+  mesh = parse_smobj(text, name + ".smobj", read_sink);
   ASSERT_TRUE(mesh) << knitout::format(read_sink.diagnostics().front());
+}
+
+class ScheduleSharedTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOrder) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const std::string name = GetParam();
+  const fs::path file = shared / "meshes" / (name + ".obj");
+  ASSERT_TRUE(fs::exists(file)) << file;
+
+  std::optional<StitchMesh> mesh;
+  stitch_shared(file, name, mesh);
+  if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure() || !mesh) return;
 
   ScheduleParams params;
   params.trials = 4;
@@ -183,6 +202,26 @@ TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOr
     EXPECT_FALSE(dat->empty());
   }
   RecordProperty("v053_drops", drops);
+}
+
+// Issue 9: the paper knits Fertility without extra cuts from scheduling
+// (§8). With the default options (100 random orders, the best 8 refined by
+// improve_order) this cut and stitch mesh of fertility.obj needs 3 (the
+// random orders alone 13); `wearknit cut --scale` from the command line,
+// whose scale differs in the last bit and whose remesh differs with it,
+// needs none (docs/scheduling.md). Held to that bound so a change for the
+// worse fails.
+TEST(ScheduleSharedFertilityTest, RefinedOrdersNeedFewSchedulingCutsOnFertility) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const fs::path file = shared / "meshes" / "fertility.obj";
+  ASSERT_TRUE(fs::exists(file)) << file;
+  std::optional<StitchMesh> mesh;
+  stitch_shared(file, "fertility", mesh);
+  if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure() || !mesh) return;
+  const Schedule s = schedule(*mesh, ScheduleParams{});
+  EXPECT_LE(s.cuts, 3) << "the best of " << s.trials.size() << " random orders had "
+                       << s.random_cuts << " cuts";
+  EXPECT_LE(s.cuts * 3, s.random_cuts) << "the refinement removes most of the random orders' cuts";
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, ScheduleSharedTest, ::testing::ValuesIn(shared_meshes()),

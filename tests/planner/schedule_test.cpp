@@ -128,6 +128,60 @@ TEST(ScheduleTest, BranchesCrossingWithinTheShiftReachAreMovedApartNotCut) {
   // the bed checks ("crossing-branches" below and in schedule_vm_test).
 }
 
+// improve_order (§7.3's random orders, then a local search): never more
+// cuts than the order it starts from, the count it returns is the order's,
+// and the order is still one the patch graph allows.
+TEST(ScheduleTest, RefinedOrdersNeverCutMoreAndKeepThePatchGraphOrder) {
+  int before = 0;
+  int after = 0;
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    SCOPED_TRACE("random shape " + std::to_string(seed));
+    Schedule s;
+    const StitchMesh mesh = fx::random_shape(seed);
+    build_rows(mesh, s);
+    build_patches(s);
+    assign_needles(mesh, s);
+    std::vector<std::set<int>> succ(s.patches.size());
+    for (std::size_t r = 0; r < s.rows.size(); ++r) {
+      for (int v : s.row_successors[r]) {
+        const int a = s.rows[r].patch;
+        const int b = s.rows[static_cast<std::size_t>(v)].patch;
+        if (a != b) succ[static_cast<std::size_t>(a)].insert(b);
+      }
+    }
+    for (std::uint64_t trial = 0; trial < 3; ++trial) {
+      std::vector<int> order = random_patch_order(s, 5, trial);
+      const int start = static_cast<int>(simulate_order(s, order).size());
+      const int cuts = improve_order(s, order, kMaxPatchShift, 1000);
+      EXPECT_LE(cuts, start);
+      EXPECT_EQ(cuts, static_cast<int>(simulate_order(s, order).size()));
+      std::vector<int> position(s.patches.size(), -1);
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        ASSERT_EQ(position[static_cast<std::size_t>(order[i])], -1) << "patch twice";
+        position[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+      }
+      ASSERT_EQ(order.size(), s.patches.size());
+      for (std::size_t a = 0; a < succ.size(); ++a) {
+        for (int b : succ[a]) EXPECT_LT(position[a], position[static_cast<std::size_t>(b)]);
+      }
+      before += start;
+      after += cuts;
+    }
+  }
+  // Over all shapes the search removes cuts the random orders leave.
+  EXPECT_LT(after, before);
+}
+
+TEST(ScheduleTest, WithoutRefinementTheBestRandomOrderIsKept) {
+  const StitchMesh mesh = fx::crossing_branches(14, 3, 12);
+  ScheduleParams params;
+  params.trials = 20;
+  params.improve = 0;
+  const Schedule s = schedule(mesh, params);
+  EXPECT_EQ(s.cuts, s.random_cuts);
+  EXPECT_EQ(s.patch_order, random_patch_order(s, params.seed, s.best_trial));
+}
+
 TEST(ScheduleTest, SameSeedSameResultWhateverTheThreads) {
   const StitchMesh mesh = fx::crossing_branches(14, 3, 12);
   const Schedule a = run(mesh, 40, 7, 1);
@@ -139,6 +193,8 @@ TEST(ScheduleTest, SameSeedSameResultWhateverTheThreads) {
   }
   EXPECT_EQ(a.patch_order, b.patch_order);
   EXPECT_EQ(a.best_trial, b.best_trial);
+  EXPECT_EQ(a.cuts, b.cuts);
+  EXPECT_EQ(a.random_cuts, b.random_cuts);
 }
 
 TEST(ScheduleTest, TimeBudgetRunsAtLeastOneTrial) {
