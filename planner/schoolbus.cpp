@@ -29,9 +29,10 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
   struct Rider {
     int at;
     int to;
+    int back = 0;  // the back needle it boards this round (`at` unless it boards offset)
   };
   std::vector<Rider> riders;
-  for (const auto& [from, to] : to_of) riders.push_back({from, to});
+  for (const auto& [from, to] : to_of) riders.push_back({from, to, from});
   std::vector<Transfer> plan;
   std::set<int> arrived;  // front needles holding riders that reached their destination
   while (true) {
@@ -48,8 +49,11 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
     // made again until nobody else has to wait.
     std::map<std::size_t, int> stop_step;
     std::set<int> waiting_at;
+    std::set<int> offset_back;  // back needles of riders that board offset
     while (true) {
       std::set<int> reserved = waiting_at;
+      offset_back.clear();
+      for (Rider& rider : riders) rider.back = rider.at;
       for (std::size_t i : aboard) {
         if (std::abs(riders[i].to - riders[i].at) <= max_racking) reserved.insert(riders[i].to);
       }
@@ -77,6 +81,31 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
           reserved.insert(stop);
           break;
         }
+        if (stop_step.count(i) == 0 && std::abs(left) <= 2 * max_racking) {
+          // No free stop on the way: board at a racking against the travel,
+          // onto a back needle ahead that no rider boards, and get off at
+          // the destination in the same round (twice the reach of a stop).
+          const bool destination_is_a_stop =
+              std::any_of(stop_step.begin(), stop_step.end(), [&](const auto& chosen) {
+                const Rider& r = riders[chosen.first];
+                return chosen.second > 0 &&
+                       r.at + (r.to > r.at ? 1 : -1) * chosen.second == riders[i].to;
+              });
+          for (int k = std::max(1, std::abs(left) - max_racking);
+               k <= max_racking && !destination_is_a_stop; ++k) {
+            if (k == std::abs(left)) continue;  // that back needle faces the destination
+            const int back = riders[i].at + sign * k;
+            if (offset_back.count(back) != 0) continue;
+            if (std::any_of(riders.begin(), riders.end(),
+                            [&](const Rider& r) { return r.at != r.to && r.at == back; }))
+              continue;
+            riders[i].back = back;
+            offset_back.insert(back);
+            reserved.insert(riders[i].to);
+            stop_step[i] = 0;
+            break;
+          }
+        }
         if (stop_step.count(i) != 0) {
           moving.push_back(i);
         } else {
@@ -92,7 +121,13 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
     if (aboard.empty())
       throw std::logic_error("schoolbus: no free needle within reach of f" +
                              std::to_string(*waiting_at.begin()));
-    for (std::size_t i : aboard) plan.push_back({0, true, riders[i].at, riders[i].at});
+    for (std::size_t i : aboard) {
+      if (riders[i].back == riders[i].at) plan.push_back({0, true, riders[i].at, riders[i].at});
+    }
+    for (std::size_t i : aboard) {
+      if (riders[i].back != riders[i].at)
+        plan.push_back({riders[i].at - riders[i].back, true, riders[i].at, riders[i].back});
+    }
     std::map<int, int> landing;  // front needle -> destination of who got off there
     // A rider gets off once per round: one that stopped on its way (at a
     // positive racking) must not ride on from its stop later in the round.
@@ -103,17 +138,18 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
         for (std::size_t i : aboard) {
           if (got_off.count(i) != 0) continue;
           Rider& rider = riders[i];
-          const int left = rider.to - rider.at;
+          const int left = rider.to - rider.back;
           if (left == 0 || (left > 0) != (sign > 0)) continue;
           const auto chosen = stop_step.find(i);
           if (left != r && !(chosen != stop_step.end() && chosen->second == step)) continue;
-          const int stop = rider.at + r;
+          const int stop = rider.back + r;
           auto it = landing.find(stop);
           if (it != landing.end() && (it->second != rider.to || stop != rider.to))
             throw std::logic_error("schoolbus: f" + std::to_string(stop) + " is taken");
           landing[stop] = rider.to;
-          plan.push_back({r, false, stop, rider.at});
+          plan.push_back({r, false, stop, rider.back});
           rider.at = stop;
+          rider.back = stop;
           got_off.insert(i);
           if (rider.at == rider.to) arrived.insert(stop);
         }

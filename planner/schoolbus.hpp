@@ -8,17 +8,23 @@
 // still has to travel; then the other way (-1, -2, ...). A loop that has to
 // travel further than the racking limit gets off as far as it can (at the
 // limit, or nearer when that needle holds a loop or is someone's
-// destination) and boards again in the next round. Loops that share a destination stack there (a
-// decrease). Each loop is transferred twice per round, and neighbours on
-// the bus keep their spacing, so the yarn between them is never stretched
-// more than by one racking step at a time.
+// destination) and boards again in the next round. A loop with no such stop
+// within reach and at most twice the limit to go boards at a racking
+// against its travel, onto a back needle ahead of it that no other loop
+// boards, and gets off at its destination in the same round (the yarn to
+// its neighbours stretches by up to the racking limit then). Loops that
+// share a destination stack there (a decrease). Each loop is transferred
+// twice per round, and loops that board at racking 0 keep their spacing on
+// the bus, so the yarn between them is never stretched more than by one
+// racking step at a time.
 //
 // Input: moves of front-bed loops (all loops on one needle move together;
 // two moves from one needle must share their destination). `occupied(n)`
 // says whether front needle n holds a loop that does not move; a loop may
 // get off only at its destination when that is occupied (stacking), never
 // at an intermediate stop. Throws std::logic_error when no plan exists
-// under these rules (no free intermediate stop within reach).
+// under these rules (no free intermediate stop within reach, and further
+// than twice the racking limit to go).
 #pragma once
 
 #include <functional>

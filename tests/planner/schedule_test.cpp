@@ -300,6 +300,7 @@ Replay replay(std::map<int, int> front, const std::vector<Transfer>& plan) {
     int& b = back[t.back];
     if (t.to_back) {
       if (f == 0) r.errors.push_back("empty front");
+      if (b != 0) r.errors.push_back("back needle taken");
       b += f;
       f = 0;
     } else {
@@ -389,8 +390,42 @@ TEST(SchoolbusTest, ARiderWhoseReachIsTakenThisRoundWaitsOnItsNeedle) {
   EXPECT_TRUE(plan.front().to_back);
 }
 
+TEST(SchoolbusTest, ARiderWithEveryStopTakenBoardsOffsetAndGetsThereInOneRound) {
+  // 0 -> 12 with 1..8 held: no stop on the way. It boards at racking -4
+  // onto b4 and gets off at 12 at racking +8.
+  const auto plan = schoolbus({{0, 12}}, [](int n) { return n >= 1 && n <= 8; });
+  std::map<int, int> start = {{0, 1}};
+  for (int n = 1; n <= 8; ++n) start[n] = 1;
+  std::map<int, int> want = {{12, 1}};
+  for (int n = 1; n <= 8; ++n) want[n] = 1;
+  const Replay r = replay(start, plan);
+  EXPECT_TRUE(r.errors.empty()) << r.errors.front();
+  EXPECT_EQ(r.front, want);
+  EXPECT_EQ(plan.size(), 2u);
+}
+
+TEST(SchoolbusTest, AFarRiderPassesLoopsThatArriveBeforeIt) {
+  // 54 -> 63 past a loop that stays on 55 and seven riders 64..70 -> 56..62
+  // (each 8 to the left): every stop of the far rider is someone's
+  // destination, and once they arrive its way is shut for good. It boards
+  // offset and lands in the first round.
+  std::vector<LoopMove> moves = {{54, 63}};
+  std::map<int, int> start = {{54, 1}, {55, 1}};
+  std::map<int, int> want = {{63, 1}, {55, 1}};
+  for (int k = 0; k < 7; ++k) {
+    moves.push_back({64 + k, 56 + k});
+    start[64 + k] = 1;
+    want[56 + k] = 1;
+  }
+  const auto plan = schoolbus(moves, [](int n) { return n == 55; });
+  const Replay r = replay(start, plan);
+  EXPECT_TRUE(r.errors.empty()) << r.errors.front();
+  EXPECT_EQ(r.front, want);
+}
+
 TEST(SchoolbusTest, RefusesWhenNoIntermediateNeedleIsFree) {
-  EXPECT_THROW(schoolbus({{0, 12}}, [](int n) { return n >= 1 && n <= 8; }), std::logic_error);
+  // Beyond twice the racking limit with every stop held.
+  EXPECT_THROW(schoolbus({{0, 20}}, [](int n) { return n >= 1 && n <= 8; }), std::logic_error);
 }
 
 // ---- knitout (§7.4-7.5) ----
