@@ -703,46 +703,33 @@ int improve_order(const Schedule& s, std::vector<int>& order, int max_shift, int
   };
   std::vector<std::pair<int, int>> cuts = simulate_order(s, order, max_shift);
   int moves = 0;
+  // Moves patch `p`; keeps the order when it leaves fewer cuts.
+  const auto improves = [&](int p, bool earliest) {
+    if (moves >= max_moves) return false;
+    std::vector<int> candidate = moved(order, p, earliest);
+    if (candidate == order) return false;
+    ++moves;
+    std::vector<std::pair<int, int>> fewer = simulate_order(s, candidate, max_shift);
+    if (fewer.size() >= cuts.size()) return false;
+    order = std::move(candidate);
+    cuts = std::move(fewer);
+    return true;
+  };
   bool improved = true;
-  while (improved && moves < max_moves) {
+  while (improved && moves < max_moves && !cuts.empty()) {
     improved = false;
+    // The loops of a cut's lower row were covered before its upper row
+    // took them: knit the consumer as early as it can go, or the producer
+    // as late.
     for (const auto& [lower, upper] : std::vector<std::pair<int, int>>(cuts)) {
-      // The loops of `lower` were covered before `upper` took them: knit
-      // the consumer as early as it can go, or the producer as late.
-      for (const auto& [p, earliest] :
-           {std::pair{s.rows[static_cast<std::size_t>(upper)].patch, true},
-            std::pair{s.rows[static_cast<std::size_t>(lower)].patch, false}}) {
-        if (moves >= max_moves) break;
-        std::vector<int> candidate = moved(order, p, earliest);
-        if (candidate == order) continue;
-        ++moves;
-        std::vector<std::pair<int, int>> fewer = simulate_order(s, candidate, max_shift);
-        if (fewer.size() < cuts.size()) {
-          order = std::move(candidate);
-          cuts = std::move(fewer);
-          improved = true;
-          break;
-        }
-      }
+      improved = improves(s.rows[static_cast<std::size_t>(upper)].patch, true) ||
+                 improves(s.rows[static_cast<std::size_t>(lower)].patch, false);
       if (improved) break;
     }
-    if (improved || cuts.empty()) continue;
     // No move of a cut's own patches helps: try every patch.
-    for (int p : std::vector<int>(order)) {
-      for (bool earliest : {true, false}) {
-        if (moves >= max_moves) break;
-        std::vector<int> candidate = moved(order, p, earliest);
-        if (candidate == order) continue;
-        ++moves;
-        std::vector<std::pair<int, int>> fewer = simulate_order(s, candidate, max_shift);
-        if (fewer.size() < cuts.size()) {
-          order = std::move(candidate);
-          cuts = std::move(fewer);
-          improved = true;
-          break;
-        }
-      }
-      if (improved) break;
+    for (std::size_t i = 0; !improved && i < order.size(); ++i) {
+      const int p = order[i];
+      improved = improves(p, true) || improves(p, false);
     }
   }
   return static_cast<int>(cuts.size());
