@@ -194,10 +194,8 @@ class Emitter {
     if (elsewhere) {
       for (int d = 1; d <= 8; ++d) {
         for (int w : {n + d, n - d}) {
-          const auto room = stay_.find(w);
-          if (room == stay_.end() || room->second == 0) continue;
-          if (!front_[w].empty() || !back_[w].empty()) continue;
-          room->second = 0;
+          if (stay_.count(w) == 0 || !front_[w].empty() || !back_[w].empty()) continue;
+          stay_.erase(w);
           move_loop(n, w);
           return w;
         }
@@ -435,7 +433,7 @@ class Emitter {
       if (!front_[w].empty() || !back_[w].empty()) continue;
       const std::size_t cast_on = arriving_.count(w) == 0 ? 1 : 0;
       const auto it = arriving_.find(w);
-      if ((it == arriving_.end() ? 0 : it->second) + cast_on + 1 <= kMaxLoops) stay_[w] = 1;
+      if ((it == arriving_.end() ? 0 : it->second) + cast_on + 1 <= kMaxLoops) stay_.insert(w);
     }
     std::vector<int> kept;  // tails left to be knit through
     for (int f : faces) {
@@ -696,7 +694,7 @@ class Emitter {
   int row_index_ = 0;
   std::set<int> row_needles_;            // needles the current row moves loops from or to, or knits
   std::map<int, std::size_t> arriving_;  // the current row's work needles -> loops arriving
-  std::map<int, int> stay_;  // the current row's empty work needles -> room for a tail (0 or 1)
+  std::set<int> stay_;              // the current row's empty work needles with room for one tail
   std::map<int, int> destination_;  // the current row's source needles -> their loops' work needle
 };
 
