@@ -239,6 +239,7 @@ ProxyResult make_proxy(const SurfaceMesh& input, const ProxyParams& params) {
     if (extracted && is_quad_dominant(*extracted)) {
       result.method = "instant-meshes";
       result.holes_filled = stats.holes_filled;
+      result.folds_removed = stats.folds_removed;
       result.mesh = std::move(*extracted);
     } else {
       result.method = "paired";
@@ -248,6 +249,10 @@ ProxyResult make_proxy(const SurfaceMesh& input, const ProxyParams& params) {
     }
   }
   result.polygons_split = split_polygons(result.mesh);
+  if (result.method == "instant-meshes") {
+    // A pentagon with two corners on one point splits into a folded quad.
+    result.folds_removed += collapse_folded_quads(result.mesh, RemeshParams{}.fold_ratio);
+  }
   if (result.method == "instant-meshes" && !is_valid_proxy(result.mesh)) {
     result.method = "paired";
     result.remesh_failure =

@@ -37,8 +37,9 @@ struct ProxyResult {
   // triangles of the resampled surface were paired along the field instead).
   std::string method = "input";
   std::string remesh_failure;
-  int samples = 0;       // remeshed: the surface samples the fields were solved on
-  int holes_filled = 0;  // remeshed: holes of the extraction closed by a polygon
+  int samples = 0;        // remeshed: the surface samples the fields were solved on
+  int holes_filled = 0;   // remeshed: holes of the extraction closed by a polygon
+  int folds_removed = 0;  // remeshed: quads of nil area where the lattice folded, welded
 };
 
 // More than half of the faces are quads.

@@ -525,6 +525,87 @@ void split_pinched_vertices(SurfaceMesh& mesh) {
   }
 }
 
+}  // namespace
+
+int collapse_folded_quads(SurfaceMesh& mesh, double ratio) {
+  int collapsed = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    const std::size_t n = mesh.positions.size();
+    std::vector<std::vector<int>> ring(n);
+    std::vector<std::vector<int>> faces_of(n);
+    std::map<std::pair<int, int>, int> uses;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+      const auto& face = mesh.faces[f];
+      for (std::size_t i = 0; i < face.size(); ++i) {
+        const int a = face[i];
+        const int b = face[(i + 1) % face.size()];
+        ring[at(a)].push_back(b);
+        ring[at(b)].push_back(a);
+        faces_of[at(a)].push_back(static_cast<int>(f));
+        ++uses[{std::min(a, b), std::max(a, b)}];
+      }
+    }
+    std::vector<bool> boundary(n, false);
+    for (const auto& [edge, count] : uses) {
+      if (count == 1) boundary[at(edge.first)] = boundary[at(edge.second)] = true;
+    }
+    for (auto& list : ring) {
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+    for (std::size_t f = 0; f < mesh.faces.size() && !changed; ++f) {
+      const auto& face = mesh.faces[f];
+      if (face.size() != 4) continue;
+      for (std::size_t i = 0; i < 2; ++i) {
+        const int a = face[i];
+        const int c = face[i + 2];
+        const int b = face[i + 1];
+        const int d = face[(i + 3) % 4];
+        const double diagonal = (mesh.positions[at(a)] - mesh.positions[at(c)]).norm();
+        const double other = (mesh.positions[at(b)] - mesh.positions[at(d)]).norm();
+        if (!(diagonal < ratio * other) || (boundary[at(a)] && boundary[at(c)])) continue;
+        std::vector<int> common;
+        std::set_intersection(ring[at(a)].begin(), ring[at(a)].end(), ring[at(c)].begin(),
+                              ring[at(c)].end(), std::back_inserter(common));
+        if (common != std::vector<int>{std::min(b, d), std::max(b, d)}) continue;
+        const auto& fa = faces_of[at(a)];
+        const auto& fc = faces_of[at(c)];
+        const bool shared = std::any_of(fa.begin(), fa.end(), [&](int g) {
+          return g != static_cast<int>(f) && std::find(fc.begin(), fc.end(), g) != fc.end();
+        });
+        if (shared) continue;
+        const Vec3 middle = boundary[at(a)] ? mesh.positions[at(a)]
+                            : boundary[at(c)]
+                                ? mesh.positions[at(c)]
+                                : 0.5 * (mesh.positions[at(a)] + mesh.positions[at(c)]);
+        mesh.positions[at(a)] = middle;
+        mesh.faces.erase(mesh.faces.begin() + static_cast<std::ptrdiff_t>(f));
+        for (auto& g : mesh.faces) std::replace(g.begin(), g.end(), c, a);
+        ++collapsed;
+        changed = true;
+        break;
+      }
+    }
+  }
+  if (collapsed == 0) return 0;
+  std::vector<int> index(mesh.positions.size(), -1);
+  std::vector<Vec3> kept;
+  for (auto& face : mesh.faces) {
+    for (int& v : face) {
+      if (index[at(v)] < 0) {
+        index[at(v)] = static_cast<int>(kept.size());
+        kept.push_back(mesh.positions[at(v)]);
+      }
+      v = index[at(v)];
+    }
+  }
+  mesh.positions = std::move(kept);
+  return collapsed;
+}
+
+namespace {
+
 // Crumbs of a few faces left where the lattice folded are dropped; a
 // second big component is kept (and fails the topology check).
 void keep_largest_component(SurfaceMesh& mesh) {
@@ -919,6 +1000,10 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
   }
   compact.faces = std::move(out.faces);
   split_pinched_vertices(compact);
+  for (int folds; (folds = collapse_folded_quads(compact, params.fold_ratio)) > 0;) {
+    stats.folds_removed += folds;
+    split_pinched_vertices(compact);
+  }
   keep_largest_component(compact);
   knitout::DiagnosticSink sink;
   if (!check_mesh(compact, "remesh", sink)) {
@@ -930,6 +1015,12 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
     stats.holes_filled = fill_holes(compact, source.count_boundary_loops(), 16);
     if (stats.holes_filled > 0) {
       split_pinched_vertices(compact);
+      // A fold along a hole's rim has both short corners on the boundary
+      // until the hole is closed.
+      for (int folds; (folds = collapse_folded_quads(compact, params.fold_ratio)) > 0;) {
+        stats.folds_removed += folds;
+        split_pinched_vertices(compact);
+      }
       if (!check_mesh(compact, "remesh", sink)) {
         stats.failure = "extracted mesh with its holes closed is not a clean surface: " +
                         sink.diagnostics().front().message;

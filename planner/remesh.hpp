@@ -44,13 +44,31 @@ struct RemeshParams {
   int position_iterations = 30;
   double sample_ratio = 0.4;  // sample spacing as a fraction of edge_mm
   double merge_below = 0.3;   // lattice edges shorter than this fraction of edge_mm are merged
+  double fold_ratio = 0.1;    // quads with one diagonal shorter than this times the other are
+                              // folds of the lattice: the short diagonal is welded
 };
 
 struct RemeshStats {
-  int samples = 0;       // vertices of the sampled input the fields live on
-  int holes_filled = 0;  // holes of the extraction closed by a polygon
-  std::string failure;   // why extraction gave no usable mesh (empty on success)
+  int samples = 0;        // vertices of the sampled input the fields live on
+  int holes_filled = 0;   // holes of the extraction closed by a polygon
+  int folds_removed = 0;  // quads of nil area welded along their short diagonal
+  std::string failure;    // why extraction gave no usable mesh (empty on success)
 };
+
+// Where the position field folds, the extraction can leave a quad whose two
+// opposite corners lie almost on one point: a flap that doubles back over its
+// neighbours (two such quads make a Z-fold; a corner shared with the sheet
+// under the flap is then pinched and split). Its area is nil, and every stage
+// after it sees a surface that turns back on itself: cut boundaries that run
+// out and back along a needle-thin face, level curves that cross it in
+// slivers. Such a quad is removed by welding its short diagonal (edge
+// collapse, the quad's two other sides become one), when the diagonal is
+// shorter than `ratio` times the other one, the two corners have no
+// neighbour in common but the quad's other corners and no face but the quad,
+// and they are not both on the boundary (which would pinch it). The welded
+// vertex sits at their midpoint (at the boundary one's place when one is).
+// Returns how many quads were removed.
+int collapse_folded_quads(SurfaceMesh& mesh, double ratio);
 
 // A quad-dominant mesh of `input` (a checked surface; polygons are
 // triangulated) with the same Euler characteristic and number of boundary

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "planner/mesh_io.hpp"
@@ -64,6 +65,65 @@ TEST(ProxyTest, HexagonBecomesTwoQuadsAndHeptagonQuadPlusPentagonSplit) {
   for (const auto& f : heptagon.faces) (f.size() == 4 ? quads : triangles) += 1;
   EXPECT_EQ(quads, 2);
   EXPECT_EQ(triangles, 1);
+}
+
+// A dart-shaped quad a d c b whose corners a and c are 0.05 apart while b
+// and d are 2 apart (a fold of the lattice), between two quads on the left
+// (x = -1) and two on the right (x = 1). `c_x` places c.
+SurfaceMesh quad_between_four(double c_x, bool with_sides = true) {
+  SurfaceMesh mesh;
+  mesh.positions = {{0, 0, 0},  {0.02, 1, 0}, {c_x, 0, 0}, {0.02, -1, 0}, {-1, 1, 0},
+                    {-1, 0, 0}, {-1, -1, 0},  {1, 1, 0},   {1, 0, 0},     {1, -1, 0}};
+  enum { a, b, c, d, p, q, r, s, t, u };
+  mesh.faces = {{a, d, c, b}};
+  if (with_sides) {
+    mesh.faces.push_back({q, a, b, p});
+    mesh.faces.push_back({r, d, a, q});
+    mesh.faces.push_back({c, t, s, b});
+    mesh.faces.push_back({d, u, t, c});
+  }
+  return mesh;
+}
+
+TEST(ProxyTest, AFoldedQuadIsWeldedAlongItsShortDiagonal) {
+  SurfaceMesh mesh = quad_between_four(0.05);
+  knitout::DiagnosticSink sink;
+  ASSERT_TRUE(check_mesh(mesh, "fold", sink));
+  EXPECT_EQ(collapse_folded_quads(mesh, 0.1), 1);
+  // The four neighbours now meet along one edge b-d: a 2 x 2 grid of quads.
+  ASSERT_EQ(mesh.faces.size(), 4u);
+  ASSERT_EQ(mesh.positions.size(), 9u);
+  EXPECT_TRUE(check_mesh(mesh, "welded", sink));
+  const HalfedgeMesh he(mesh);
+  EXPECT_EQ(he.euler_characteristic(), 1);
+  EXPECT_EQ(he.count_boundary_loops(), 1);
+  int middle = -1;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    if ((mesh.positions[v] - Vec3(0.025, 0, 0)).norm() < 1e-12) middle = static_cast<int>(v);
+  }
+  ASSERT_GE(middle, 0) << "the welded vertex sits half way between a and c";
+  int faces_at_middle = 0;
+  for (const auto& face : mesh.faces) {
+    EXPECT_EQ(face.size(), 4u);
+    faces_at_middle += std::count(face.begin(), face.end(), middle) > 0;
+  }
+  EXPECT_EQ(faces_at_middle, 4);
+}
+
+TEST(ProxyTest, AQuadWithBothDiagonalsLongIsKept) {
+  SurfaceMesh mesh = quad_between_four(0.5);  // a rhombus, diagonals 0.5 and 2
+  const SurfaceMesh before = mesh;
+  EXPECT_EQ(collapse_folded_quads(mesh, 0.1), 0);
+  EXPECT_EQ(mesh.faces, before.faces);
+  EXPECT_EQ(collapse_folded_quads(mesh, 0.3), 1) << "the ratio is the threshold";
+}
+
+TEST(ProxyTest, AFoldedQuadWithBothShortCornersOnTheBoundaryIsKept) {
+  // Alone, the dart's corners a and c are both on the boundary: welding them
+  // would pinch the boundary into two loops through one vertex.
+  SurfaceMesh mesh = quad_between_four(0.05, false);
+  EXPECT_EQ(collapse_folded_quads(mesh, 0.1), 0);
+  EXPECT_EQ(mesh.faces.size(), 1u);
 }
 
 TEST(ProxyTest, QuadDominantInputIsKept) {
