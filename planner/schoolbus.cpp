@@ -41,6 +41,19 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
       if (riders[i].at != riders[i].to) aboard.push_back(i);
     }
     if (aboard.empty()) break;
+    // Riders choose their stops front first in their direction of travel: a
+    // rider ahead takes the furthest free stop, and those behind it take
+    // shorter steps rather than wait behind it (a rider that waits falls
+    // behind riders going less far, whose arrived loops may then fill its
+    // way for more than the racking limit).
+    std::sort(aboard.begin(), aboard.end(), [&](std::size_t a, std::size_t b) {
+      const Rider& ra = riders[a];
+      const Rider& rb = riders[b];
+      const bool right_a = ra.to > ra.at;
+      const bool right_b = rb.to > rb.at;
+      if (right_a != right_b) return right_a;
+      return right_a ? ra.at > rb.at : ra.at < rb.at;
+    });
     // Needles riders get off at this round: their destinations when within
     // reach, else the furthest needle within reach that is empty (no loop
     // that stays, no rider that arrived or waits) and that nobody else gets
@@ -115,6 +128,7 @@ std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,
       }
       if (!more_wait) {
         aboard = std::move(moving);
+        std::sort(aboard.begin(), aboard.end());
         break;
       }
     }

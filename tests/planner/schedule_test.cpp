@@ -423,6 +423,55 @@ TEST(SchoolbusTest, AFarRiderPassesLoopsThatArriveBeforeIt) {
   EXPECT_EQ(r.front, want);
 }
 
+// A block shifted past a loop that stays (fertility at 99 mm, one row: 51
+// loops 15..65 to 69..107 past loops on 66, 76 and 96). Riders chose their
+// stops back first: the one ahead of the block found its stops taken by
+// those behind and waited, the wait spread back through the block, the
+// riders that waited fell behind riders going less far, whose arrived loops
+// then shut their way for more than the racking limit ("no free needle
+// within reach"). Front first, every shift of such a block goes through.
+TEST(SchoolbusTest, ABlockPassesALoopThatStaysJustAheadOfIt) {
+  std::vector<LoopMove> moves;
+  std::map<int, int> start = {{23, 1}};
+  std::map<int, int> want = {{23, 1}};
+  for (int n = 0; n < 20; ++n) {
+    moves.push_back({n, n + 24});
+    start[n] = 1;
+    want[n + 24] = 1;
+  }
+  const auto plan = schoolbus(moves, [](int n) { return n == 23; });
+  const Replay r = replay(start, plan);
+  EXPECT_TRUE(r.errors.empty()) << r.errors.front();
+  EXPECT_EQ(r.front, want);
+}
+
+TEST(SchoolbusTest, EveryShiftOfABlockPastALoopThatStaysGoesThrough) {
+  for (int size = 4; size <= 40; ++size) {
+    for (int shift = 9; shift <= 60; ++shift) {
+      for (int gap = 0; gap <= 3; ++gap) {
+        for (const int sign : {+1, -1}) {
+          const int held = sign * (size + gap);
+          std::vector<LoopMove> moves;
+          std::map<int, int> start = {{held, 1}};
+          std::map<int, int> want = {{held, 1}};
+          for (int n = 0; n < size; ++n) {
+            moves.push_back({sign * n, sign * (n + shift)});
+            start[sign * n] = 1;
+            want[sign * (n + shift)] += 1;
+          }
+          if (want[held] != 1) continue;  // a destination on the held loop is a decrease
+          std::vector<Transfer> plan;
+          ASSERT_NO_THROW(plan = schoolbus(moves, [&](int n) { return n == held; }))
+              << size << " loops shifted by " << sign * shift << " past f" << held;
+          const Replay r = replay(start, plan);
+          ASSERT_TRUE(r.errors.empty()) << r.errors.front();
+          ASSERT_EQ(r.front, want) << size << " loops shifted by " << sign * shift;
+        }
+      }
+    }
+  }
+}
+
 TEST(SchoolbusTest, RefusesWhenNoIntermediateNeedleIsFree) {
   // Beyond twice the racking limit with every stop held.
   EXPECT_THROW(schoolbus({{0, 20}}, [](int n) { return n >= 1 && n <= 8; }), std::logic_error);
