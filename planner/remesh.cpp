@@ -28,6 +28,23 @@ std::size_t at(int i) {
   return static_cast<std::size_t>(i);
 }
 
+// Vertices no face uses are dropped; the others are numbered in the order
+// the faces first use them.
+void drop_unused_vertices(SurfaceMesh& mesh) {
+  std::vector<int> index(mesh.positions.size(), -1);
+  std::vector<Vec3> kept;
+  for (auto& face : mesh.faces) {
+    for (int& v : face) {
+      if (index[at(v)] < 0) {
+        index[at(v)] = static_cast<int>(kept.size());
+        kept.push_back(mesh.positions[at(v)]);
+      }
+      v = index[at(v)];
+    }
+  }
+  mesh.positions = std::move(kept);
+}
+
 struct TriTraits : public OpenMesh::DefaultTraits {
   using Point = OpenMesh::Vec3d;
   using Normal = OpenMesh::Vec3d;
@@ -588,19 +605,7 @@ int collapse_folded_quads(SurfaceMesh& mesh, double ratio) {
       }
     }
   }
-  if (collapsed == 0) return 0;
-  std::vector<int> index(mesh.positions.size(), -1);
-  std::vector<Vec3> kept;
-  for (auto& face : mesh.faces) {
-    for (int& v : face) {
-      if (index[at(v)] < 0) {
-        index[at(v)] = static_cast<int>(kept.size());
-        kept.push_back(mesh.positions[at(v)]);
-      }
-      v = index[at(v)];
-    }
-  }
-  mesh.positions = std::move(kept);
+  if (collapsed > 0) drop_unused_vertices(mesh);
   return collapsed;
 }
 
@@ -627,18 +632,7 @@ void keep_largest_component(SurfaceMesh& mesh) {
     if (vertices.find(face[0]) == largest) kept.push_back(std::move(face));
   }
   mesh.faces = std::move(kept);
-  std::vector<int> index(mesh.positions.size(), -1);
-  std::vector<Vec3> positions;
-  for (auto& face : mesh.faces) {
-    for (int& v : face) {
-      if (index[at(v)] < 0) {
-        index[at(v)] = static_cast<int>(positions.size());
-        positions.push_back(mesh.positions[at(v)]);
-      }
-      v = index[at(v)];
-    }
-  }
-  mesh.positions = std::move(positions);
+  drop_unused_vertices(mesh);
 }
 
 // 4-PoSy smoothing (Instant Meshes §3.2, extrinsic): each lattice origin
@@ -986,19 +980,8 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
       }
     }
   }
-  // Drop output vertices no face uses, and renumber.
-  std::vector<int> index(at(nc), -1);
-  SurfaceMesh compact;
-  for (auto& face : out.faces) {
-    for (int& v : face) {
-      if (index[at(v)] < 0) {
-        index[at(v)] = static_cast<int>(compact.positions.size());
-        compact.positions.push_back(out.positions[at(v)]);
-      }
-      v = index[at(v)];
-    }
-  }
-  compact.faces = std::move(out.faces);
+  SurfaceMesh compact = std::move(out);
+  drop_unused_vertices(compact);
   split_pinched_vertices(compact);
   for (int folds; (folds = collapse_folded_quads(compact, params.fold_ratio)) > 0;) {
     stats.folds_removed += folds;

@@ -887,23 +887,6 @@ struct Builder {
         }
         merge_same();
       }
-      if (false) {
-        for (Chain& c : out) {
-          if (c.side == Side::Wale) continue;
-          double length = 0;
-          bool boundary_only = true;
-          for (const Run& r : c.runs) {
-            length += r.length;
-            boundary_only = boundary_only && !r.level;
-          }
-          if (boundary_only && length < 0) {
-            c.side = Side::Wale;
-            changed = true;
-            break;
-          }
-        }
-        merge_same();
-      }
     }
     // Neighbouring boundary runs of one chain are one stretch of boundary.
     for (Chain& c : out) join_boundary_runs(c);
