@@ -29,9 +29,10 @@ struct CutReport {
   double proxy_edge_mm = 0.0;
   int polygons_split = 0;
   int triangles_paired = 0;
-  int samples = 0;        // surface samples the remesh solved its fields on
-  int holes_filled = 0;   // holes of the extraction closed by a polygon
-  int folds_removed = 0;  // quads of nil area where the lattice folded, welded
+  int samples = 0;          // surface samples the remesh solved its fields on
+  int holes_filled = 0;     // holes of the extraction closed by a polygon
+  int folds_removed = 0;    // quads of nil area where the lattice folded, welded
+  int remesh_attempts = 0;  // extractions tried, at spacings a few percent apart
   std::string proxy_method = "input";
   std::string remesh_failure;
   CutParams params;

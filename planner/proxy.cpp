@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -230,20 +231,39 @@ ProxyResult make_proxy(const SurfaceMesh& input, const ProxyParams& params) {
     result.edge_mm = params.proxy_edge_mm > 0.0 ? params.proxy_edge_mm
                                                 : std::sqrt(area / std::max(1, params.auto_faces));
     RemeshParams remesh;
-    remesh.edge_mm = result.edge_mm;
     remesh.orientation_iterations = params.field_iterations;
     remesh.position_iterations = params.position_iterations;
+    // The extraction can fail at one lattice spacing and not at one a few
+    // percent off (a lattice that folds into an extra handle where the
+    // surface is thin: mannequin at 103 mm, Euler characteristic -1 for 1,
+    // extracts cleanly at 97-103% of the spacing). Nearby spacings are tried
+    // before falling back to pairing triangles; the first failure is kept
+    // to report when none works.
+    const double base = result.edge_mm;
+    std::optional<SurfaceMesh> extracted;
     RemeshStats stats;
-    auto extracted = field_aligned_remesh(input, remesh, stats);
+    std::string first_failure;
+    for (const double factor : {1.0, 0.99, 1.01, 0.97, 1.03}) {
+      remesh.edge_mm = base * factor;
+      stats = RemeshStats{};
+      extracted = field_aligned_remesh(input, remesh, stats);
+      ++result.remesh_attempts;
+      if (extracted && is_quad_dominant(*extracted)) break;
+      if (first_failure.empty())
+        first_failure = extracted ? "extracted mesh is not quad-dominant" : stats.failure;
+      extracted.reset();
+    }
     result.samples = stats.samples;
-    if (extracted && is_quad_dominant(*extracted)) {
+    if (extracted) {
       result.method = "instant-meshes";
+      result.edge_mm = remesh.edge_mm;
       result.holes_filled = stats.holes_filled;
       result.folds_removed = stats.folds_removed;
       result.mesh = std::move(*extracted);
     } else {
       result.method = "paired";
-      result.remesh_failure = extracted ? "extracted mesh is not quad-dominant" : stats.failure;
+      result.remesh_failure = first_failure;
+      result.edge_mm = base;
       result.mesh = resample(input, 0.8 * result.edge_mm, 0.8);
       result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
     }

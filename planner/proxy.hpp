@@ -40,6 +40,9 @@ struct ProxyResult {
   int samples = 0;        // remeshed: the surface samples the fields were solved on
   int holes_filled = 0;   // remeshed: holes of the extraction closed by a polygon
   int folds_removed = 0;  // remeshed: quads of nil area where the lattice folded, welded
+  // remeshed: extractions tried (the first spacing, then 99, 101, 97, 103% of
+  // it until one gives a clean surface)
+  int remesh_attempts = 0;
 };
 
 // More than half of the faces are quads.

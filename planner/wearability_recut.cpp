@@ -80,6 +80,7 @@ CutReport report_from_json(const json& r) {
   report.samples = proxy.value("samples", 0);
   report.holes_filled = proxy.value("holes_filled", 0);
   report.folds_removed = proxy.value("folds_removed", 0);
+  report.remesh_attempts = proxy.value("remesh_attempts", 0);
   const json params = r.value("params", json::object());
   report.params.seed = params.value("seed", report.params.seed);
   report.params.cs = params.value("cs", report.params.cs);

@@ -117,6 +117,7 @@ int run_cut(const std::vector<std::string>& args, Context& context) {
   report.samples = proxy.samples;
   report.holes_filled = proxy.holes_filled;
   report.folds_removed = proxy.folds_removed;
+  report.remesh_attempts = proxy.remesh_attempts;
   report.proxy_method = proxy.method;
   report.remesh_failure = proxy.remesh_failure;
   report.proxy_seconds = seconds_since(start);
