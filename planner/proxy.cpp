@@ -263,7 +263,6 @@ ProxyResult make_proxy(const SurfaceMesh& input, const ProxyParams& params) {
     } else {
       result.method = "paired";
       result.remesh_failure = first_failure;
-      result.edge_mm = base;
       result.mesh = resample(input, 0.8 * result.edge_mm, 0.8);
       result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
     }

@@ -611,6 +611,17 @@ int collapse_folded_quads(SurfaceMesh& mesh, double ratio) {
 
 namespace {
 
+// Folded quads welded, and any vertex the welds leave pinched split again,
+// until none is left. Returns how many quads were welded.
+int weld_folds(SurfaceMesh& mesh, double ratio) {
+  int welded = 0;
+  for (int folds; (folds = collapse_folded_quads(mesh, ratio)) > 0;) {
+    welded += folds;
+    split_pinched_vertices(mesh);
+  }
+  return welded;
+}
+
 // Crumbs of a few faces left where the lattice folded are dropped; a
 // second big component is kept (and fails the topology check).
 void keep_largest_component(SurfaceMesh& mesh) {
@@ -983,10 +994,7 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
   SurfaceMesh compact = std::move(out);
   drop_unused_vertices(compact);
   split_pinched_vertices(compact);
-  for (int folds; (folds = collapse_folded_quads(compact, params.fold_ratio)) > 0;) {
-    stats.folds_removed += folds;
-    split_pinched_vertices(compact);
-  }
+  stats.folds_removed += weld_folds(compact, params.fold_ratio);
   keep_largest_component(compact);
   knitout::DiagnosticSink sink;
   if (!check_mesh(compact, "remesh", sink)) {
@@ -1000,10 +1008,7 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
       split_pinched_vertices(compact);
       // A fold along a hole's rim has both short corners on the boundary
       // until the hole is closed.
-      for (int folds; (folds = collapse_folded_quads(compact, params.fold_ratio)) > 0;) {
-        stats.folds_removed += folds;
-        split_pinched_vertices(compact);
-      }
+      stats.folds_removed += weld_folds(compact, params.fold_ratio);
       if (!check_mesh(compact, "remesh", sink)) {
         stats.failure = "extracted mesh with its holes closed is not a clean surface: " +
                         sink.diagnostics().front().message;
