@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <system_error>
+#include <utility>
 
 namespace wearknit::test {
 
@@ -42,6 +44,25 @@ CommandResult run_wearknit(const std::string& args, const std::string& stdin_tex
 
 // A fresh empty folder under the system temp dir, removed by the caller.
 std::filesystem::path make_temp_dir(const std::string& prefix);
+
+// A fresh empty folder under the system temp dir, removed with everything in
+// it when the object goes out of scope (also when an ASSERT returns early).
+class TempDir {
+ public:
+  explicit TempDir(const std::string& prefix) : path_(make_temp_dir(prefix)) {}
+  TempDir(TempDir&& other) noexcept : path_(std::move(other.path_)) { other.path_.clear(); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  TempDir& operator=(TempDir&&) = delete;
+  ~TempDir() {
+    std::error_code ignored;
+    if (!path_.empty()) std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 std::string read_file(const std::filesystem::path& path);
 void write_file(const std::filesystem::path& path, const std::string& content);

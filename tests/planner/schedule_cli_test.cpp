@@ -20,16 +20,19 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-fs::path plan_folder(const StitchMesh& mesh, const std::string& prefix) {
-  const fs::path dir = wearknit::test::make_temp_dir(prefix);
+using wearknit::test::TempDir;
+
+TempDir plan_folder(const StitchMesh& mesh, const std::string& prefix) {
+  TempDir dir(prefix);
   std::ostringstream text;
   write_smobj(text, mesh);
-  wearknit::test::write_file(dir / "stitch-mesh.smobj", text.str());
+  wearknit::test::write_file(dir.path() / "stitch-mesh.smobj", text.str());
   return dir;
 }
 
 TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
-  const fs::path dir = plan_folder(fixtures::y_shape(12, 3, 4, 3), "sched-y");
+  const TempDir folder = plan_folder(fixtures::y_shape(12, 3, 4, 3), "sched-y");
+  const fs::path& dir = folder.path();
   wearknit::test::write_file(dir / "report.json", "{\"cut\": {\"arcs\": 3}}\n");
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 5");
   ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -65,7 +68,8 @@ TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
 }
 
 TEST(ScheduleCliTest, CrossingBranchesGetASewCutAndTwoPieces) {
-  const fs::path dir = plan_folder(fixtures::crossing_branches(12, 3, 14), "sched-x");
+  const TempDir folder = plan_folder(fixtures::crossing_branches(12, 3, 14), "sched-x");
+  const fs::path& dir = folder.path();
   const auto result =
       wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 8 --pattern seed");
   ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -77,7 +81,8 @@ TEST(ScheduleCliTest, CrossingBranchesGetASewCutAndTwoPieces) {
 }
 
 TEST(ScheduleCliTest, MissingStitchMeshIsAnIoError) {
-  const fs::path dir = wearknit::test::make_temp_dir("sched-empty");
+  const TempDir folder("sched-empty");
+  const fs::path& dir = folder.path();
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string());
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(result.err,
@@ -87,7 +92,8 @@ TEST(ScheduleCliTest, MissingStitchMeshIsAnIoError) {
 TEST(ScheduleCliTest, UnschedulableMeshIsInvalidInput) {
   // A valid stitch mesh (it passes planner::check) that no machine can knit:
   // one row of 600 stitches on a 540-needle bed.
-  const fs::path dir = plan_folder(fixtures::rectangle(600, 1), "sched-wide");
+  const TempDir folder = plan_folder(fixtures::rectangle(600, 1), "sched-wide");
+  const fs::path& dir = folder.path();
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 1");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err, (dir / "stitch-mesh.smobj").string() +
@@ -96,7 +102,8 @@ TEST(ScheduleCliTest, UnschedulableMeshIsInvalidInput) {
 }
 
 TEST(ScheduleCliTest, NarrowerTwinIsScheduled) {
-  const fs::path dir = plan_folder(fixtures::rectangle(500, 1), "sched-narrow");
+  const TempDir folder = plan_folder(fixtures::rectangle(500, 1), "sched-narrow");
+  const fs::path& dir = folder.path();
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 1 -q");
   EXPECT_EQ(result.exit_code, 0) << result.err;
   EXPECT_TRUE(fs::exists(dir / "pieces" / "piece-1.k"));
@@ -105,7 +112,8 @@ TEST(ScheduleCliTest, NarrowerTwinIsScheduled) {
 // The stitch stage's reader judges the file: its diagnostics (P08x) name the
 // line, and nothing is written.
 TEST(ScheduleCliTest, MalformedStitchMeshIsInvalidInput) {
-  const fs::path dir = wearknit::test::make_temp_dir("sched-malformed");
+  const TempDir folder("sched-malformed");
+  const fs::path& dir = folder.path();
   wearknit::test::write_file(dir / "stitch-mesh.smobj",
                              "L knit -l1 y1 +l1 y1\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
                              "f 1 2 3 4\nT 2\n");
@@ -118,7 +126,8 @@ TEST(ScheduleCliTest, MalformedStitchMeshIsInvalidInput) {
 }
 
 TEST(ScheduleCliTest, WellFormedTwinOfTheMalformedMeshIsScheduled) {
-  const fs::path dir = wearknit::test::make_temp_dir("sched-wellformed");
+  const TempDir folder("sched-wellformed");
+  const fs::path& dir = folder.path();
   wearknit::test::write_file(dir / "stitch-mesh.smobj",
                              "L knit -l1 y1 +l1 y1\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
                              "f 1 2 3 4\nT 1\n");
@@ -128,7 +137,8 @@ TEST(ScheduleCliTest, WellFormedTwinOfTheMalformedMeshIsScheduled) {
 }
 
 TEST(ScheduleCliTest, TrialsAndTimeBudgetExcludeEachOther) {
-  const fs::path dir = plan_folder(fixtures::rectangle(3, 2), "sched-opts");
+  const TempDir folder = plan_folder(fixtures::rectangle(3, 2), "sched-opts");
+  const fs::path& dir = folder.path();
   const auto result =
       wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 3 --time-budget 1");
   EXPECT_EQ(result.exit_code, 2);
@@ -136,14 +146,16 @@ TEST(ScheduleCliTest, TrialsAndTimeBudgetExcludeEachOther) {
 }
 
 TEST(ScheduleCliTest, MaxShiftBeyondTheRackingLimitIsAUsageError) {
-  const fs::path dir = plan_folder(fixtures::rectangle(3, 2), "sched-shift");
+  const TempDir folder = plan_folder(fixtures::rectangle(3, 2), "sched-shift");
+  const fs::path& dir = folder.path();
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --max-shift 9");
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(result.err, "wearknit schedule: --max-shift takes 0 to 8 (the racking limit)\n");
 }
 
 TEST(ScheduleCliTest, MaxShiftIsReported) {
-  const fs::path dir = plan_folder(fixtures::crossing_branches(12, 3, 10), "sched-shift-ok");
+  const TempDir folder = plan_folder(fixtures::crossing_branches(12, 3, 10), "sched-shift-ok");
+  const fs::path& dir = folder.path();
   const auto moved = wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 8 -q");
   ASSERT_EQ(moved.exit_code, 0) << moved.err;
   json report = json::parse(wearknit::test::read_file(dir / "report.json"));
@@ -159,14 +171,16 @@ TEST(ScheduleCliTest, MaxShiftIsReported) {
 }
 
 TEST(ScheduleCliTest, NegativeImproveIsAUsageError) {
-  const fs::path dir = plan_folder(fixtures::rectangle(3, 2), "sched-improve");
+  const TempDir folder = plan_folder(fixtures::rectangle(3, 2), "sched-improve");
+  const fs::path& dir = folder.path();
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --improve -1");
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(result.err, "wearknit schedule: --improve must not be negative\n");
 }
 
 TEST(ScheduleCliTest, ImproveAndTheRandomOrdersCutsAreReported) {
-  const fs::path dir = plan_folder(fixtures::crossing_branches(12, 3, 10), "sched-improve-ok");
+  const TempDir folder = plan_folder(fixtures::crossing_branches(12, 3, 10), "sched-improve-ok");
+  const fs::path& dir = folder.path();
   for (int improve : {0, 3}) {
     const auto result = wearknit::test::run_wearknit(
         "schedule " + dir.string() + " --trials 8 --improve " + std::to_string(improve) + " -q");
@@ -181,7 +195,8 @@ TEST(ScheduleCliTest, ImproveAndTheRandomOrdersCutsAreReported) {
 }
 
 TEST(ScheduleCliTest, TimeBudgetAloneIsAccepted) {
-  const fs::path dir = plan_folder(fixtures::rectangle(3, 2), "sched-budget");
+  const TempDir folder = plan_folder(fixtures::rectangle(3, 2), "sched-budget");
+  const fs::path& dir = folder.path();
   const auto result =
       wearknit::test::run_wearknit("schedule " + dir.string() + " --time-budget 0.05 --quiet");
   EXPECT_EQ(result.exit_code, 0) << result.err;

@@ -11,13 +11,13 @@
 
 namespace {
 
-using wearknit::test::make_temp_dir;
 using wearknit::test::read_file;
 using wearknit::test::run_wearknit;
 
 TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
   WEARKNIT_REQUIRE_SHARED(shared);
-  const auto dir = make_temp_dir("stitch-cli");
+  const wearknit::test::TempDir folder("stitch-cli");
+  const auto& dir = folder.path();
   const auto cut = run_wearknit("cut '" + (shared / "meshes" / "half-torus-qd.obj").string() +
                                 "' --scale 30 -q --no-pictures -o '" + dir.string() + "'");
   ASSERT_EQ(cut.exit_code, 0) << cut.err;
@@ -52,7 +52,8 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
 }
 
 TEST(StitchMeshCliTest, RejectsBadGaugeOptions) {
-  const auto dir = make_temp_dir("stitch-cli-bad");
+  const wearknit::test::TempDir folder("stitch-cli-bad");
+  const auto& dir = folder.path();
   auto r = run_wearknit("stitch-mesh '" + dir.string() + "' --swatch 40x40");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err,
@@ -67,7 +68,8 @@ TEST(StitchMeshCliTest, RejectsBadGaugeOptions) {
 }
 
 TEST(StitchMeshCliTest, SaysWhatIsMissingAndWritesNothing) {
-  const auto dir = make_temp_dir("stitch-cli-missing");
+  const wearknit::test::TempDir folder("stitch-cli-missing");
+  const auto& dir = folder.path();
   auto r = run_wearknit("stitch-mesh '" + (dir / "nowhere").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err,
