@@ -143,6 +143,7 @@ class Emitter {
       ++result_.stats.tucks;
     }
     carrier_at_ = n;
+    carrier_bed_ = b;
     stitched_ = true;
   }
   void xfer(char from_bed, int from, char to_bed, int to) {
@@ -162,6 +163,12 @@ class Emitter {
     dst.insert(dst.end(), src.begin(), src.end());
     src.clear();
     ++result_.stats.transfers;
+    // The yarn hangs from the last loop made: where it goes, the yarn's end
+    // goes (the next float is measured from there).
+    if (from_bed == carrier_bed_ && from == carrier_at_) {
+      carrier_bed_ = to_bed;
+      carrier_at_ = to;
+    }
   }
   // A bind-off tail on a needle this row needs moves to a needle needed
   // later or never (park); failing that it joins a live loop nearby
@@ -304,14 +311,32 @@ class Emitter {
   }
   // Rather than float further than max_float_needles to `n`, the yarn goes
   // out and comes in again (the operator trims the ends).
-  void cut_yarn_if_far(int n) {
-    if (in_ && std::abs(carrier_at_ - n) > params_.max_float_needles) {
+  // `yarn_at`: where the yarn will hang from when the stitch at `n` is made
+  // (the last loop's needle after any transfers in between).
+  void cut_yarn_if_far(int n, int yarn_at) {
+    if (in_ && std::abs(yarn_at - n) > params_.max_float_needles) {
       release_if_pending();
       end_pass();
       line("outhook " + params_.carrier);
       in_ = false;
     }
     if (!in_) bring_in();
+  }
+  // Where the last loop made (and the yarn with it) will be once `plan`'s
+  // transfers are made.
+  int yarn_after(const std::vector<Transfer>& plan) const {
+    char b = carrier_bed_;
+    int n = carrier_at_;
+    for (const Transfer& t : plan) {
+      if (t.to_back && b == 'f' && n == t.front) {
+        b = 'b';
+        n = t.back;
+      } else if (!t.to_back && b == 'b' && n == t.back) {
+        b = 'f';
+        n = t.front;
+      }
+    }
+    return n;
   }
   void release_if_pending() {
     if (!hook_pending_ || !stitched_) return;
@@ -380,7 +405,7 @@ class Emitter {
     if (in_ && std::abs(carrier_at_ - knit.back()) < std::abs(carrier_at_ - knit.front())) dir = -1;
     if (dir < 0) std::reverse(knit.begin(), knit.end());
     end_pass();
-    cut_yarn_if_far(knit.front());
+    cut_yarn_if_far(knit.front(), carrier_at_);
     for (int n : knit) stitch("knit", dir, 'f', n, front_[n].front());
     release_if_pending();
   }
@@ -480,9 +505,10 @@ class Emitter {
     // Yarn: start the row on the side nearer the carrier; cut and bring the
     // yarn in again rather than float far.
     int dir = +1;
-    if (in_ && std::abs(carrier_at_ - right) < std::abs(carrier_at_ - left)) dir = -1;
+    const int yarn_at = yarn_after(plan);
+    if (in_ && std::abs(yarn_at - right) < std::abs(yarn_at - left)) dir = -1;
     const int start = dir > 0 ? left : right;
-    cut_yarn_if_far(start);
+    cut_yarn_if_far(start, yarn_at);
     std::vector<int> order(faces.begin(), faces.end());  // in pass A's direction
     if (dir < 0) std::reverse(order.begin(), order.end());
     end_pass();
@@ -516,23 +542,42 @@ class Emitter {
     }
 
     // Cast-on (§7.5): an alternating tuck cast-on on the needles of faces
-    // with a course edge below that has no loop.
-    std::vector<int> cast;
-    for (int f : order) {
-      const FaceLinks& fl = s_.faces[static_cast<std::size_t>(f)];
+    // with a course edge below that has no loop. Each run of such faces
+    // (consecutive in pass A's order) is cast on where the yarn is when it
+    // gets there: a run at the row's start before the pass, any other run
+    // in the middle of pass A, just before its faces are knit. Casting every
+    // run on before the pass would float the yarn from the row's start to
+    // the run and back (V054: 75 needles each way on a widening row of
+    // fertility).
+    std::vector<bool> cast(order.size(), false);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const FaceLinks& fl = s_.faces[static_cast<std::size_t>(order[i])];
       // A face that some loop from below reaches is held by it: a tuck there
       // would only add to the needle's stack.
-      if (std::none_of(fl.in.begin(), fl.in.end(), [&](int e) { return loop_below(e); }))
-        cast.push_back(f);
+      cast[i] = std::none_of(fl.in.begin(), fl.in.end(), [&](int e) { return loop_below(e); });
     }
-    if (!cast.empty()) {
+    // Tucks out on every other face of the run order[i, j), back on the
+    // rest; `pass_a_bed` puts them on the bed pass A knits (seed: purls are
+    // on the back bed by then).
+    auto cast_on = [&](std::size_t i, std::size_t j, bool pass_a_bed) {
+      auto bed_of = [&](int n) { return pass_a_bed && purl(row_index, 0, n) ? 'b' : 'f'; };
+      for (std::size_t k = i; k < j; k += 2) {
+        const int n = work(order[k]);
+        stitch("tuck", dir, bed_of(n), n, intermediate(order[k]));
+      }
+      for (std::size_t k = j; k-- > i;) {
+        if ((k - i) % 2 == 0) continue;
+        const int n = work(order[k]);
+        stitch("tuck", -dir, bed_of(n), n, intermediate(order[k]));
+      }
+    };
+    auto run_end = [&](std::size_t i) {
+      while (i < order.size() && cast[i]) ++i;
+      return i;
+    };
+    if (!order.empty() && cast[0]) {
       end_pass();
-      for (std::size_t i = 0; i < cast.size(); i += 2) {
-        stitch("tuck", dir, 'f', work(cast[i]), intermediate(cast[i]));
-      }
-      for (std::size_t i = cast.size(); i-- > 0;) {
-        if (i % 2 == 1) stitch("tuck", -dir, 'f', work(cast[i]), intermediate(cast[i]));
-      }
+      cast_on(0, run_end(0), false);
       release_if_pending();
     }
 
@@ -541,7 +586,10 @@ class Emitter {
       end_pass();
       for (int f : faces) {
         if (pass == 1 && is_triangle(f)) continue;
-        if (purl(row_index, pass, work(f))) xfer('f', work(f), 'b', work(f));
+        // A face cast on later in pass A has nothing to move yet: its tuck
+        // goes straight onto the back bed.
+        if (purl(row_index, pass, work(f)) && !front_[work(f)].empty())
+          xfer('f', work(f), 'b', work(f));
       }
     };
     auto to_front = [&](int pass) {
@@ -553,7 +601,9 @@ class Emitter {
     };
     if (params_.pattern == StitchPattern::Seed) to_back(0);
     end_pass();
-    for (int f : order) {
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      if (i > 0 && cast[i] && !cast[i - 1]) cast_on(i, run_end(i), true);
+      const int f = order[i];
       const int n = work(f);
       const char b = purl(row_index, 0, n) ? 'b' : 'f';
       stitch("knit", dir, b, n, intermediate(f));
@@ -646,7 +696,7 @@ class Emitter {
     // loop first, so the holder takes one loop per run.
     if (run.size() > 1 || front_[needle(run[0])].size() > 1) {
       end_pass();
-      cut_yarn_if_far(needle(run[0]));
+      cut_yarn_if_far(needle(run[0]), carrier_at_);
       stitch("knit", chain_dir, 'f', needle(run[0]), kTail);
       release_if_pending();
       for (std::size_t k = 0; k + 1 < run.size(); ++k) {
@@ -684,7 +734,8 @@ class Emitter {
   bool in_ = false;
   bool hook_pending_ = false;
   bool stitched_ = false;
-  int carrier_at_ = 0;
+  int carrier_at_ = 0;      // needle of the last loop made (the yarn hangs from it)
+  char carrier_bed_ = 'f';  // and its bed
   PassKey pass_{};
   int lo_ = 0, hi_ = 0, last_ = kNoNeedle;
   int min_needle_ = kNoNeedle, max_needle_ = -kNoNeedle;

@@ -105,6 +105,13 @@ class Builder {
 
   int front_segments() const { return static_cast<int>(front_.size()) - 1; }
 
+  // Adds `extra` segments to the right end of the front, at its height, with
+  // no face below them: the row that knits through them casts them on.
+  void extend_right(int extra) {
+    const double x = pos_[front_.back()].x();
+    for (int i = 1; i <= extra; ++i) front_.push_back(vertex(x + i, height_));
+  }
+
   StitchMesh mesh() const {
     StitchMesh m = mesh_;
     m.positions = pos_;
@@ -193,6 +200,18 @@ inline StitchMesh widening(int width, int height) {
       b.add_row(0, knits(w));
     }
   }
+  return b.mesh();
+}
+
+// A ledge: `below` rows of `width` knit faces, then `above` rows `extra`
+// faces wider on the right. The first wide row knits through the loops
+// below and casts on its last `extra` faces (their bottom edges are on the
+// sheet's boundary), at the far end from where the yarn waits.
+inline StitchMesh ledge(int width, int extra, int below, int above) {
+  Builder b(width);
+  for (int r = 1; r < below; ++r) b.add_row(0, knits(width));
+  b.extend_right(extra);
+  for (int r = 0; r < above; ++r) b.add_row(0, knits(width + extra));
   return b.mesh();
 }
 
