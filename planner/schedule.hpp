@@ -36,8 +36,10 @@ class ScheduleError : public std::runtime_error {
 inline constexpr int kNone = -1;
 
 // §7.3: the furthest (in needles) the order simulation moves a patch
-// sideways, by default, to keep it clear of loops held for other rows.
-inline constexpr int kMaxPatchShift = 4;
+// sideways, by default, to keep it clear of loops held for other rows: the
+// racking limit, so the move is one round of the schoolbus (docs/scheduling.md
+// compares 4 and 8 over the shared meshes).
+inline constexpr int kMaxPatchShift = 8;
 
 // One loop-carrying course edge of the stitch mesh: made by `lower` (its
 // CourseOut side), knit through by `upper` (its CourseIn side). kNone on a

@@ -68,7 +68,7 @@ TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
 }
 
 TEST(ScheduleCliTest, CrossingBranchesGetASewCutAndTwoPieces) {
-  const TempDir folder = plan_folder(fixtures::crossing_branches(12, 3, 14), "sched-x");
+  const TempDir folder = plan_folder(fixtures::crossing_branches(12, 3, 22), "sched-x");
   const fs::path& dir = folder.path();
   const auto result =
       wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 8 --pattern seed");

@@ -77,9 +77,9 @@ TEST(ScheduleTest, YShapeSplitsIntoThreePatchesAndNeedsNoCut) {
 }
 
 TEST(ScheduleTest, CrossingBranchesNeedOneCutWhateverTheOrder) {
-  // Each branch widens 14 needles over the other's base: further than a
+  // Each branch widens 22 needles over the other's base: further than a
   // patch may be moved (kMaxPatchShift), so every order needs a cut.
-  const Schedule s = run(fx::crossing_branches(12, 3, 14), 30);
+  const Schedule s = run(fx::crossing_branches(12, 3, 22), 30);
   ASSERT_EQ(s.patches.size(), 3u);
   ASSERT_EQ(s.trials.size(), 30u);
   for (const TrialResult& t : s.trials) EXPECT_GE(t.cuts, 1) << "trial " << t.trial;
@@ -492,7 +492,7 @@ std::vector<Case> cases() {
           {"short-rows-both-sides", fx::short_rows(14, 3, true)},
           {"y-shape", fx::y_shape(14, 3, 5, 4)},
           {"crossing-branches", fx::crossing_branches(12, 3, 10)},
-          {"crossing-branches-cut", fx::crossing_branches(12, 3, 14)}};
+          {"crossing-branches-cut", fx::crossing_branches(12, 3, 22)}};
 }
 
 int subdivided_faces(const StitchMesh& mesh, const Schedule& s, const Piece& piece) {
