@@ -4,6 +4,7 @@
 // scheduling cuts go into cuts.json and the figures (time estimates from the
 // VM) into report.json (both merged with what is there).
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -41,6 +42,32 @@ std::optional<json> read_object(const fs::path& path) {
   json value = json::parse(in, nullptr, false);
   if (value.is_discarded() || !value.is_object()) return std::nullopt;
   return value;
+}
+
+// Removes the files of pieces numbered above `count` (piece-N.k, .dat, .svg,
+// .layout.json) that an earlier run making more pieces left in `dir`, so the
+// folder holds exactly this schedule's pieces and nobody sends a stale one.
+// Other files are left alone. Returns an error message, or "".
+std::string remove_stale_pieces(const fs::path& dir, std::size_t count) {
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("piece-", 0) != 0) continue;
+    std::size_t end = 6;
+    while (end < name.size() && end < 15 && std::isdigit(static_cast<unsigned char>(name[end])))
+      ++end;
+    const std::string kind = name.substr(end);
+    if (end == 6 || (kind != ".k" && kind != ".dat" && kind != ".svg" && kind != ".layout.json"))
+      continue;
+    if (std::stoul(name.substr(6, end - 6)) > count) stale.push_back(entry.path());
+  }
+  if (ec) return dir.string() + ": " + ec.message();
+  for (const fs::path& path : stale) {
+    fs::remove(path, ec);
+    if (ec) return path.string() + ": cannot remove a piece of an earlier run: " + ec.message();
+  }
+  return {};
 }
 
 }  // namespace
@@ -274,6 +301,11 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   // Each piece laid flat, for the assembly guide (planner/piece_layout.hpp).
   if (const std::string failure =
           planner::write_piece_layouts((folder / "pieces").string(), schedule);
+      !failure.empty()) {
+    context.err << "wearknit schedule: " << failure << '\n';
+    return kExitUsage;
+  }
+  if (const std::string failure = remove_stale_pieces(folder / "pieces", pieces.size());
       !failure.empty()) {
     context.err << "wearknit schedule: " << failure << '\n';
     return kExitUsage;

@@ -80,6 +80,30 @@ TEST(ScheduleCliTest, CrossingBranchesGetASewCutAndTwoPieces) {
   EXPECT_TRUE(fs::exists(dir / "pieces" / "piece-2.k"));
 }
 
+TEST(ScheduleCliTest, ARunWithFewerPiecesRemovesTheEarlierRunsExtraPieces) {
+  // Two pieces, then a run that finds one piece: pieces/ must not keep the
+  // second piece of the first run, which would be sent with the new one.
+  const TempDir folder = plan_folder(fixtures::crossing_branches(12, 3, 22), "sched-stale");
+  const fs::path& dir = folder.path();
+  ASSERT_EQ(wearknit::test::run_wearknit("schedule " + dir.string() + " -q").exit_code, 0);
+  for (const char* file : {"piece-2.k", "piece-2.dat", "piece-2.svg", "piece-2.layout.json"})
+    ASSERT_TRUE(fs::exists(dir / "pieces" / file)) << file;
+  wearknit::test::write_file(dir / "pieces" / "piece-2-notes.txt", "kept\n");
+  wearknit::test::write_file(dir / "pieces" / "pieces.txt", "kept\n");
+  std::ostringstream text;
+  write_smobj(text, fixtures::rectangle(5, 3));
+  wearknit::test::write_file(dir / "stitch-mesh.smobj", text.str());
+  const auto again = wearknit::test::run_wearknit("schedule " + dir.string() + " -q");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  const json report = json::parse(wearknit::test::read_file(dir / "report.json"));
+  ASSERT_EQ(report["schedule"]["pieces"].size(), 1u);
+  EXPECT_TRUE(fs::exists(dir / "pieces" / "piece-1.k"));
+  for (const char* file : {"piece-2.k", "piece-2.dat", "piece-2.svg", "piece-2.layout.json"})
+    EXPECT_FALSE(fs::exists(dir / "pieces" / file)) << file;
+  EXPECT_TRUE(fs::exists(dir / "pieces" / "piece-2-notes.txt"));
+  EXPECT_TRUE(fs::exists(dir / "pieces" / "pieces.txt"));
+}
+
 TEST(ScheduleCliTest, MissingStitchMeshIsAnIoError) {
   const TempDir folder("sched-empty");
   const fs::path& dir = folder.path();
