@@ -38,6 +38,7 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
   EXPECT_EQ(s.at("faces").at("total").get<std::size_t>(), mesh->faces.size());
   EXPECT_EQ(s.at("gauge").at("from"), "swatch 40x40:42x115");
   EXPECT_EQ(s.at("boundary_loops"), 1);
+  EXPECT_TRUE(s.at("row_time_levelled").is_number_integer());
 
   // --stitch-mm replaces the swatch; a run again replaces only its own member.
   const auto again =
