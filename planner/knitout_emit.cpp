@@ -163,12 +163,15 @@ class Emitter {
     dst.insert(dst.end(), src.begin(), src.end());
     src.clear();
     ++result_.stats.transfers;
-    // The yarn hangs from the last loop made: where it goes, the yarn's end
-    // goes (the next float is measured from there).
-    if (from_bed == carrier_bed_ && from == carrier_at_) {
-      carrier_bed_ = to_bed;
-      carrier_at_ = to;
-    }
+    follow_loop(carrier_bed_, carrier_at_, from_bed, from, to_bed, to);
+  }
+  // The yarn hangs from the last loop made, on (`bed`, `n`): a transfer of
+  // that needle takes the yarn's end along (the next float is measured from
+  // where it lands).
+  static void follow_loop(char& bed, int& n, char from_bed, int from, char to_bed, int to) {
+    if (from_bed != bed || from != n) return;
+    bed = to_bed;
+    n = to;
   }
   // A bind-off tail on a needle this row needs moves to a needle needed
   // later or never (park); failing that it joins a live loop nearby
@@ -328,12 +331,10 @@ class Emitter {
     char b = carrier_bed_;
     int n = carrier_at_;
     for (const Transfer& t : plan) {
-      if (t.to_back && b == 'f' && n == t.front) {
-        b = 'b';
-        n = t.back;
-      } else if (!t.to_back && b == 'b' && n == t.back) {
-        b = 'f';
-        n = t.front;
+      if (t.to_back) {
+        follow_loop(b, n, 'f', t.front, 'b', t.back);
+      } else {
+        follow_loop(b, n, 'b', t.back, 'f', t.front);
       }
     }
     return n;
