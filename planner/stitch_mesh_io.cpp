@@ -292,6 +292,7 @@ std::string merge_stitch_report(const std::string& dir, const StitchMeshReport& 
       {"bind_off_sides", report.stats.boundary_sides},
       {"sides_split_below", report.stats.sides_split_below},
       {"row_time_levelled", report.stats.row_time_levelled},
+      {"tip_sides", report.stats.tip_sides},
       {"boundary_loops", f.boundary_loops},
       {"euler_characteristic", f.euler_characteristic},
       {"remesh_seconds", report.stats.total_seconds},

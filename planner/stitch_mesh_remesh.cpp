@@ -356,6 +356,18 @@ struct Pieces {
   int to(int h) const { return from[at(next(h))]; }
 };
 
+void link_twins(Pieces& out) {
+  out.twin.assign(out.from.size(), -1);
+  std::unordered_map<std::uint64_t, int> half;
+  half.reserve(out.from.size());
+  for (int h = 0; h < static_cast<int>(out.from.size()); ++h)
+    half[key(out.from[at(h)], out.to(h))] = h;
+  for (int h = 0; h < static_cast<int>(out.from.size()); ++h) {
+    auto it = half.find(key(out.to(h), out.from[at(h)]));
+    if (it != half.end()) out.twin[at(h)] = it->second;
+  }
+}
+
 Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const Eigen::VectorXd& t,
              double spacing, int bands) {
   Pieces out;
@@ -465,15 +477,48 @@ Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const 
       out.start.push_back(static_cast<int>(out.from.size()));
     }
   }
-  out.twin.assign(out.from.size(), -1);
-  std::unordered_map<std::uint64_t, int> half;
-  half.reserve(out.from.size());
-  for (int h = 0; h < static_cast<int>(out.from.size()); ++h)
-    half[key(out.from[at(h)], out.to(h))] = h;
-  for (int h = 0; h < static_cast<int>(out.from.size()); ++h) {
-    auto it = half.find(key(out.to(h), out.from[at(h)]));
-    if (it != half.end()) out.twin[at(h)] = it->second;
+  link_twins(out);
+  return out;
+}
+
+// A point to add on a half-edge of the disc boundary: at parameter s from its start.
+struct HalfedgeSplit {
+  int halfedge = -1;
+  double s = 0;
+  Vec3 point = Vec3::Zero();
+};
+
+// The pieces with points added on boundary half-edges (each split half-edge
+// becomes two with the same origin; boundary half-edges have no twin).
+Pieces split_halfedges(const Pieces& in, std::vector<HalfedgeSplit> splits) {
+  std::sort(splits.begin(), splits.end(), [](const HalfedgeSplit& a, const HalfedgeSplit& b) {
+    return std::tie(a.halfedge, a.s) < std::tie(b.halfedge, b.s);
+  });
+  Pieces out;
+  out.position = in.position;
+  out.band = in.band;
+  out.tri = in.tri;
+  out.start.assign(1, 0);
+  std::size_t next_split = 0;
+  for (std::size_t p = 0; p + 1 < in.start.size(); ++p) {
+    for (int h = in.start[p]; h < in.start[p + 1]; ++h) {
+      auto push = [&](int from) {
+        out.from.push_back(from);
+        out.level.push_back(in.level[at(h)]);
+        out.source_face.push_back(in.source_face[at(h)]);
+        out.source_side.push_back(in.source_side[at(h)]);
+        out.piece.push_back(static_cast<int>(p));
+      };
+      push(in.from[at(h)]);
+      while (next_split < splits.size() && splits[next_split].halfedge == h) {
+        out.position.push_back(splits[next_split].point);
+        push(static_cast<int>(out.position.size()) - 1);
+        ++next_split;
+      }
+    }
+    out.start.push_back(static_cast<int>(out.from.size()));
   }
+  link_twins(out);
   return out;
 }
 
@@ -537,6 +582,8 @@ struct Builder {
   std::unordered_map<std::uint64_t, std::size_t> face_below;
   // Level curve (by any of its undirected piece edges) -> fewest segments.
   std::unordered_map<std::uint64_t, int> min_segments;
+  // Points to add on boundary half-edges, for row ends (end_tips_in_wale_sides).
+  std::vector<HalfedgeSplit> tip_splits;
 
   int stitch_vertex(int piece_vertex) {
     auto [it, inserted] = anchor.emplace(piece_vertex, 0);
@@ -907,7 +954,109 @@ struct Builder {
         after.runs.erase(after.runs.begin());
       }
     }
+    end_tips_in_wale_sides(out);
     return out;
+  }
+
+  // Splits run `r` after its first `count` half-edges.
+  static std::pair<Run, Run> split_run(const Run& r, std::size_t count, const Pieces& pieces) {
+    Run a;
+    Run b;
+    a.side = b.side = r.side;
+    a.level = b.level = r.level;
+    for (std::size_t k = 0; k < r.halfedges.size(); ++k) {
+      const int h = r.halfedges[k];
+      const double len =
+          (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
+      Run& into = k < count ? a : b;
+      into.halfedges.push_back(h);
+      into.length += len;
+    }
+    return {a, b};
+  }
+
+  // §6.3, row ends. A row that ends where its bottom and top chains meet on
+  // the boundary (a wedge: the boundary crosses the rows obliquely) ends
+  // instead in a wale side: the stretch of the oblique boundary next to the
+  // point, `tip_side_wales` (0.9) wales long. The faces before it lean towards the boundary and
+  // keep their height, where a wedge would shrink them to nothing and fan
+  // increases or decreases into its point (docs/stitch-mesh.md, "Row ends").
+  // The wale side ends at a piece vertex that far from the point; where there
+  // is none, `tip_splits` receives the point to add (the caller adds them and
+  // makes the chains again).
+  void end_tips_in_wale_sides(std::vector<Chain>& out) {
+    if (!(params.tip_side_wales > 0) || out.size() < 2) return;
+    const double wale = params.tip_side_wales * params.wale_mm;
+    const double tolerance = 0.02 * params.wale_mm;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      Chain& a = out[i];
+      Chain& b = out[(i + 1) % out.size()];
+      if (&a == &b || a.side == Side::Wale || b.side == Side::Wale || a.side == b.side) continue;
+      const Vec3 tip = pieces.position[at(pieces.from[at(b.runs.front().halfedges.front())])];
+      // Where run r (walked from the tip: forward from its front, or backward
+      // from its back) is that far from the tip, in straight line: the number
+      // of half-edges before that vertex, or a split point to add.
+      auto cut_at = [&](const Run& r, bool from_front) -> std::optional<std::size_t> {
+        if (r.level || r.length < wale) return std::nullopt;
+        const std::size_t n = r.halfedges.size();
+        for (std::size_t k = 0; k < n; ++k) {
+          const int h = from_front ? r.halfedges[k] : r.halfedges[n - 1 - k];
+          const Vec3 near = pieces.position[at(from_front ? pieces.from[at(h)] : pieces.to(h))];
+          const Vec3 far = pieces.position[at(from_front ? pieces.to(h) : pieces.from[at(h)])];
+          const double d_far = (far - tip).norm();
+          if (d_far < wale - tolerance) continue;
+          if (std::abs(d_far - wale) <= tolerance) {
+            if (k + 1 == n) return std::nullopt;  // the whole run: nothing left of it
+            return from_front ? k + 1 : n - 1 - k;
+          }
+          if (std::abs((near - tip).norm() - wale) <= tolerance && k > 0) {
+            return from_front ? k : n - k;
+          }
+          // The point of this half-edge that far from the tip.
+          const Vec3 d = near - tip;
+          const Vec3 e = far - near;
+          const double ee = e.dot(e);
+          const double de = d.dot(e);
+          const double disc_value = de * de - ee * (d.dot(d) - wale * wale);
+          if (ee > 0 && disc_value >= 0) {
+            const double s = std::clamp((-de + std::sqrt(disc_value)) / ee, 0.0, 1.0);
+            const Vec3 point = near + s * e;
+            // Parameter from the half-edge's own start.
+            tip_splits.push_back({h, from_front ? s : 1.0 - s, point});
+          }
+          return std::nullopt;
+        }
+        return std::nullopt;
+      };
+      const bool prefer_b = b.runs.front().length >= a.runs.back().length;
+      std::optional<std::size_t> cut_b;
+      std::optional<std::size_t> cut_a;
+      if (prefer_b) {
+        cut_b = cut_at(b.runs.front(), true);
+        if (!cut_b) cut_a = cut_at(a.runs.back(), false);
+      } else {
+        cut_a = cut_at(a.runs.back(), false);
+        if (!cut_a) cut_b = cut_at(b.runs.front(), true);
+      }
+      Chain wale_side;
+      wale_side.side = Side::Wale;
+      if (cut_b) {
+        auto [near, far] = split_run(b.runs.front(), *cut_b, pieces);
+        near.side = Side::Wale;
+        wale_side.runs.push_back(std::move(near));
+        b.runs.front() = std::move(far);
+      } else if (cut_a) {
+        auto [far, near] = split_run(a.runs.back(), *cut_a, pieces);
+        near.side = Side::Wale;
+        wale_side.runs.push_back(std::move(near));
+        a.runs.back() = std::move(far);
+      } else {
+        continue;
+      }
+      ++stats.tip_sides;
+      out.insert(out.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::move(wale_side));
+      ++i;
+    }
   }
 
   std::int32_t wale_arc(const Chain& chain) const {
@@ -1629,9 +1778,7 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   // Rows, pieces and strips from t. A strip with a hole (an interior
   // extremum of t) makes the row time be levelled and the rows be placed
   // again; a row time without one is used as fitted.
-  auto make_strips = [&] {
-    const Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
-    pieces = slice(disc, tris, rows, 1.0, bands);
+  auto find_strips = [&] {
     // Strips: pieces of one band joined across their shared sides.
     const int num_pieces = static_cast<int>(pieces.band.size());
     parent.assign(at(num_pieces), 0);
@@ -1665,6 +1812,11 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
       loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
     }
   };
+  auto make_strips = [&] {
+    const Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
+    pieces = slice(disc, tris, rows, 1.0, bands);
+    find_strips();
+  };
   make_strips();
   const bool has_hole = std::any_of(loops.begin(), loops.end(),
                                     [](const auto& entry) { return entry.second.size() > 1; });
@@ -1672,7 +1824,25 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
     result.stats.row_time_levelled = level_interior_extrema(disc, tris, t);
     make_strips();
   }
-  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  // Row ends: the boundary points 0.9 wale (`tip_side_wales`) from where a row's chains meet
+  // become piece vertices, so those rows can end in a wale side there.
+  if (params.tip_side_wales > 0) {
+    std::vector<HalfedgeSplit> splits;
+    {
+      Builder probe{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+      for (const auto& [root, strip_loops] : loops) {
+        if (strip_loops.size() == 1) {
+          probe.chains(probe.loop_runs(strip_loops.front(), pieces.band[at(root)], t, tris));
+        }
+      }
+      splits = std::move(probe.tip_splits);
+    }
+    if (!splits.empty()) {
+      pieces = split_halfedges(pieces, std::move(splits));
+      find_strips();
+    }
+  }
+  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   builder.mesh.course_mm = params.course_mm;
   builder.mesh.wale_mm = params.wale_mm;
   // Strips in row order, so level curves are sampled from below first.
@@ -1705,6 +1875,7 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   result.stats.invalid_faces = builder.stats.invalid_faces;
   result.stats.boundary_sides = builder.stats.boundary_sides;
   result.stats.sides_split_below = builder.stats.sides_split_below;
+  result.stats.tip_sides = builder.stats.tip_sides;
   result.mesh = std::move(builder.mesh);
   result.problems = std::move(builder.problems);
   for (std::string& line : check(result.mesh)) result.problems.push_back(std::move(line));

@@ -68,9 +68,13 @@ struct AnisoRemeshParams {
   // Cost of breaking one of the Fig. 7 rules of thumb in the zip
   // (docs/stitch-mesh.md): shaping at the fabric's edge, shaping on shaping,
   // an increase beside a decrease.
-  double stability_cost = 0.5;
+  double stability_cost = 1.0;
   // Extra cost of a wale side more than 15% off wale_mm in the zip.
   double outside_cost = 0.05;
+  // A row whose bottom and top chains meet on the boundary (where the
+  // boundary crosses the rows obliquely) ends instead in a wale side this
+  // many wales long, cut from the boundary there (0: rows end in a point).
+  double tip_side_wales = 0.9;
 };
 
 struct AnisoRemeshStats {
@@ -85,6 +89,8 @@ struct AnisoRemeshStats {
   // Sides of a level curve split after the row below was made (its knit
   // stitch there became an increase), because the row above needed more.
   int sides_split_below = 0;
+  // Rows that end in a wale side cut from the boundary instead of a point.
+  int tip_sides = 0;
   // Vertices whose row time was levelled because the fitted one had an
   // interior extremum (a strip with a hole); 0 when it had none.
   int row_time_levelled = 0;

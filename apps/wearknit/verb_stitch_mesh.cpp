@@ -38,11 +38,13 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
       "weight of the labelled wale direction in each straightening fit")(
       "pentagon-cost", po::value<double>(&params.pentagon_cost)->default_value(0.05),
       "cost of an increase or decrease against a wale side's squared relative length error")(
-      "stability-cost", po::value<double>(&params.stability_cost)->default_value(0.5),
+      "stability-cost", po::value<double>(&params.stability_cost)->default_value(1.0),
       "cost of breaking a Fig. 7 rule of thumb (docs/stitch-mesh.md); 0 ignores them")(
       "outside-cost", po::value<double>(&params.outside_cost)->default_value(0.05),
       "extra cost of a wale side more than 15% off its target length")(
-      "no-picture", "do not draw stitch-mesh.png")(
+      "row-end-wales", po::value<double>(&params.tip_side_wales)->default_value(0.9),
+      "a row that meets an oblique boundary in a point ends in a wale side this many wales "
+      "long instead; 0 keeps the point")("no-picture", "do not draw stitch-mesh.png")(
       "format", po::value<std::string>(&format_name)->default_value("text"),
       "diagnostics as text (stderr) or json (stdout)")("json", "same as --format json")(
       "quiet,q", "print nothing on success");
@@ -68,11 +70,10 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
   if (problem.empty()) problem = planner::check_gauge(gauge);
   if (problem.empty() && (params.straighten_iterations < 0 || !(params.label_weight >= 0) ||
                           !(params.pentagon_cost >= 0) || !(params.stability_cost >= 0) ||
-                          !(params.outside_cost >= 0))) {
+                          !(params.outside_cost >= 0) || !(params.tip_side_wales >= 0))) {
     problem =
-        "--straighten, --label-weight, --pentagon-cost, --stability-cost and --outside-cost must "
-        "not "
-        "be negative";
+        "--straighten, --label-weight, --pentagon-cost, --stability-cost, --outside-cost and "
+        "--row-end-wales must not be negative";
   }
   if (!problem.empty()) {
     context.err << "wearknit stitch-mesh: " << problem << "\n";

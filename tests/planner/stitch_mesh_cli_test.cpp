@@ -39,6 +39,7 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
   EXPECT_EQ(s.at("gauge").at("from"), "swatch 40x40:42x115");
   EXPECT_EQ(s.at("boundary_loops"), 1);
   EXPECT_TRUE(s.at("row_time_levelled").is_number_integer());
+  EXPECT_TRUE(s.at("tip_sides").is_number_integer());
 
   // --stitch-mm replaces the swatch; a run again replaces only its own member.
   const auto again =
@@ -66,6 +67,11 @@ TEST(StitchMeshCliTest, RejectsBadGaugeOptions) {
   r = run_wearknit("stitch-mesh '" + dir.string() + "' --gauge 0");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "wearknit stitch-mesh: the gauge (needles per inch) must be positive\n");
+  r = run_wearknit("stitch-mesh '" + dir.string() + "' --row-end-wales -1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "wearknit stitch-mesh: --straighten, --label-weight, --pentagon-cost, "
+            "--stability-cost, --outside-cost and --row-end-wales must not be negative\n");
 }
 
 TEST(StitchMeshCliTest, SaysWhatIsMissingAndWritesNothing) {

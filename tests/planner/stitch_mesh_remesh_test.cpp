@@ -69,6 +69,39 @@ TEST(StitchMeshRemeshTest, MeshesAParallelogramWithSlantedSides) {
   expect_good_stitch_mesh(disc, 50.0 * 40.0, default_params(), "parallelogram");
 }
 
+// Sides slanted 60 degrees from the wale: each row meets a side in a wedge,
+// its bottom and top chains ending in one point. With rows ending in a wale
+// side cut from the slanted boundary (the default), the wedge's stitches keep
+// their height: more wale sides within 15% and fewer short-row triangles and
+// shaping than with rows ending in a point.
+TEST(StitchMeshRemeshTest, RowsMeetingAnObliqueBoundaryEndInAWaleSide) {
+  const double shear = std::tan(60.0 * sd::kPi / 180.0);
+  const LabelledDisc disc = sd::grid_disc(40, 20, [=](double s, double t) {
+    return Eigen::Vector3d(60 * s + 30 * shear * t, 30 * t, 0.0);
+  });
+  AnisoRemeshParams pointed = default_params();
+  pointed.tip_side_wales = 0;
+  const AnisoRemeshResult with_point = remesh_anisotropic(disc, pointed);
+  const AnisoRemeshResult with_side = remesh_anisotropic(disc, default_params());
+  for (const AnisoRemeshResult* r : {&with_point, &with_side}) {
+    EXPECT_TRUE(r->problems.empty());
+    EXPECT_LT(sd::farthest_boundary_vertex(disc, r->mesh), 1e-6 * 60);
+  }
+  EXPECT_EQ(with_point.stats.tip_sides, 0);
+  EXPECT_GT(with_side.stats.tip_sides, 10);  // about two per row (10 rows)
+  const StitchMeshFigures p = measure(with_point.mesh);
+  const StitchMeshFigures s = measure(with_side.mesh);
+  std::printf(
+      "[oblique] point: short-row %d shaping %d wale within %.3f | side: short-row %d "
+      "shaping %d wale within %.3f\n",
+      p.short_row, p.increase + p.decrease, p.wale.within_15_percent, s.short_row,
+      s.increase + s.decrease, s.wale.within_15_percent);
+  EXPECT_LT(s.short_row, p.short_row);
+  EXPECT_LT(s.increase + s.decrease, p.increase + p.decrease);
+  EXPECT_GT(s.wale.within_15_percent, p.wale.within_15_percent + 0.05);
+  expect_good_stitch_mesh(disc, 60.0 * 30.0, default_params(), "oblique parallelogram");
+}
+
 TEST(StitchMeshRemeshTest, MeshesACylinderCutOpen) {
   expect_good_stitch_mesh(sd::cylinder(15, 40), sd::cylinder_area(15, 40), default_params(),
                           "cylinder");
