@@ -582,7 +582,7 @@ struct Builder {
   std::unordered_map<std::uint64_t, std::size_t> face_below;
   // Level curve (by any of its undirected piece edges) -> fewest segments.
   std::unordered_map<std::uint64_t, int> min_segments;
-  // Points to add on boundary half-edges, for row ends (end_tips_in_wale_sides).
+  // Points to add on boundary half-edges, for row ends (end_rows_in_wale_sides).
   std::vector<HalfedgeSplit> tip_splits;
 
   int stitch_vertex(int piece_vertex) {
@@ -954,7 +954,7 @@ struct Builder {
         after.runs.erase(after.runs.begin());
       }
     }
-    end_tips_in_wale_sides(out);
+    end_rows_in_wale_sides(out);
     return out;
   }
 
@@ -978,84 +978,118 @@ struct Builder {
   // §6.3, row ends. A row that ends where its bottom and top chains meet on
   // the boundary (a wedge: the boundary crosses the rows obliquely) ends
   // instead in a wale side: the stretch of the oblique boundary next to the
-  // point, `tip_side_wales` (0.9) wales long. The faces before it lean towards the boundary and
-  // keep their height, where a wedge would shrink them to nothing and fan
-  // increases or decreases into its point (docs/stitch-mesh.md, "Row ends").
-  // The wale side ends at a piece vertex that far from the point; where there
-  // is none, `tip_splits` receives the point to add (the caller adds them and
-  // makes the chains again).
-  void end_tips_in_wale_sides(std::vector<Chain>& out) {
+  // point, `tip_side_wales` (0.9) wales long in a straight line. The faces
+  // before it lean towards the boundary and keep their height, where a wedge
+  // would shrink them to nothing and fan increases or decreases into its
+  // point (docs/stitch-mesh.md, step 4, "Row ends"). A wale side on the
+  // boundary shorter than that (the boundary turns from along the wale to
+  // oblique within the row) is lengthened the same way. The stretch ends at
+  // a piece vertex; where none lies at that distance, `tip_splits` receives
+  // the point to add (the caller adds them and makes the chains again).
+  void end_rows_in_wale_sides(std::vector<Chain>& out) {
     if (!(params.tip_side_wales > 0) || out.size() < 2) return;
-    const double wale = params.tip_side_wales * params.wale_mm;
+    const double length = params.tip_side_wales * params.wale_mm;
     const double tolerance = 0.02 * params.wale_mm;
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      Chain& a = out[i];
-      Chain& b = out[(i + 1) % out.size()];
-      if (&a == &b || a.side == Side::Wale || b.side == Side::Wale || a.side == b.side) continue;
-      const Vec3 tip = pieces.position[at(pieces.from[at(b.runs.front().halfedges.front())])];
-      // Where run r (walked from the tip: forward from its front, or backward
-      // from its back) is that far from the tip, in straight line: the number
-      // of half-edges before that vertex, or a split point to add.
-      auto cut_at = [&](const Run& r, bool from_front) -> std::optional<std::size_t> {
-        if (r.level || r.length < wale) return std::nullopt;
-        const std::size_t n = r.halfedges.size();
-        for (std::size_t k = 0; k < n; ++k) {
-          const int h = from_front ? r.halfedges[k] : r.halfedges[n - 1 - k];
-          const Vec3 near = pieces.position[at(from_front ? pieces.from[at(h)] : pieces.to(h))];
-          const Vec3 far = pieces.position[at(from_front ? pieces.to(h) : pieces.from[at(h)])];
-          const double d_far = (far - tip).norm();
-          if (d_far < wale - tolerance) continue;
-          if (std::abs(d_far - wale) <= tolerance) {
-            if (k + 1 == n) return std::nullopt;  // the whole run: nothing left of it
-            return from_front ? k + 1 : n - 1 - k;
-          }
-          if (std::abs((near - tip).norm() - wale) <= tolerance && k > 0) {
-            return from_front ? k : n - k;
-          }
-          // The point of this half-edge that far from the tip.
-          const Vec3 d = near - tip;
-          const Vec3 e = far - near;
-          const double ee = e.dot(e);
-          const double de = d.dot(e);
-          const double disc_value = de * de - ee * (d.dot(d) - wale * wale);
-          if (ee > 0 && disc_value >= 0) {
-            const double s = std::clamp((-de + std::sqrt(disc_value)) / ee, 0.0, 1.0);
-            const Vec3 point = near + s * e;
-            // Parameter from the half-edge's own start.
-            tip_splits.push_back({h, from_front ? s : 1.0 - s, point});
-          }
-          return std::nullopt;
+    // Where boundary run r, walked forward from its front or backward from
+    // its back, is `length` from `origin` in a straight line: the number of
+    // half-edges before that vertex, or nullopt (a split point to add is
+    // recorded when the distance is reached inside a half-edge).
+    auto cut_at = [&](const Vec3& origin, const Run& r,
+                      bool from_front) -> std::optional<std::size_t> {
+      if (r.level || r.length < length - tolerance) return std::nullopt;
+      const std::size_t n = r.halfedges.size();
+      for (std::size_t k = 0; k < n; ++k) {
+        const int h = from_front ? r.halfedges[k] : r.halfedges[n - 1 - k];
+        const Vec3 near = pieces.position[at(from_front ? pieces.from[at(h)] : pieces.to(h))];
+        const Vec3 far = pieces.position[at(from_front ? pieces.to(h) : pieces.from[at(h)])];
+        const double d_far = (far - origin).norm();
+        if (d_far < length - tolerance) continue;
+        if (std::abs(d_far - length) <= tolerance) {
+          if (k + 1 == n) return std::nullopt;  // the whole run: nothing left of it
+          return from_front ? k + 1 : n - 1 - k;
+        }
+        if (std::abs((near - origin).norm() - length) <= tolerance && k > 0) {
+          return from_front ? k : n - k;
+        }
+        // The point of this half-edge at that distance.
+        const Vec3 d = near - origin;
+        const Vec3 e = far - near;
+        const double ee = e.dot(e);
+        const double de = d.dot(e);
+        const double root = de * de - ee * (d.dot(d) - length * length);
+        if (ee > 0 && root >= 0) {
+          const double s = std::clamp((-de + std::sqrt(root)) / ee, 0.0, 1.0);
+          // Parameter from the half-edge's own start.
+          tip_splits.push_back({h, from_front ? s : 1.0 - s, near + s * e});
         }
         return std::nullopt;
-      };
-      const bool prefer_b = b.runs.front().length >= a.runs.back().length;
-      std::optional<std::size_t> cut_b;
-      std::optional<std::size_t> cut_a;
-      if (prefer_b) {
-        cut_b = cut_at(b.runs.front(), true);
-        if (!cut_b) cut_a = cut_at(a.runs.back(), false);
-      } else {
-        cut_a = cut_at(a.runs.back(), false);
-        if (!cut_a) cut_b = cut_at(b.runs.front(), true);
       }
-      Chain wale_side;
-      wale_side.side = Side::Wale;
-      if (cut_b) {
-        auto [near, far] = split_run(b.runs.front(), *cut_b, pieces);
-        near.side = Side::Wale;
-        wale_side.runs.push_back(std::move(near));
-        b.runs.front() = std::move(far);
-      } else if (cut_a) {
-        auto [far, near] = split_run(a.runs.back(), *cut_a, pieces);
-        near.side = Side::Wale;
-        wale_side.runs.push_back(std::move(near));
-        a.runs.back() = std::move(far);
-      } else {
+      return std::nullopt;
+    };
+    // Takes the stretch from the back of `a` (origin_a: the point its
+    // distance is measured from) or the front of `b`, the longer first.
+    // Returns the stretch as a wale run, or nullopt.
+    auto take = [&](Chain& a, Chain& b, const Vec3& origin_a, const Vec3& origin_b,
+                    bool& from_b) -> std::optional<Run> {
+      const bool prefer_b = b.runs.front().length >= a.runs.back().length;
+      for (int attempt = 0; attempt < 2; ++attempt) {
+        const bool use_b = (attempt == 0) == prefer_b;
+        if (use_b) {
+          if (auto cut = cut_at(origin_b, b.runs.front(), true)) {
+            auto [near, far] = split_run(b.runs.front(), *cut, pieces);
+            b.runs.front() = std::move(far);
+            near.side = Side::Wale;
+            from_b = true;
+            return near;
+          }
+        } else if (auto cut = cut_at(origin_a, a.runs.back(), false)) {
+          auto [far, near] = split_run(a.runs.back(), *cut, pieces);
+          a.runs.back() = std::move(far);
+          near.side = Side::Wale;
+          from_b = false;
+          return near;
+        }
+      }
+      return std::nullopt;
+    };
+    auto point = [&](int vertex) { return pieces.position[at(vertex)]; };
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      Chain& c = out[i];
+      if (c.side != Side::Wale) {
+        // A point where this chain meets the next course chain.
+        Chain& b = out[(i + 1) % out.size()];
+        if (&c == &b || b.side == Side::Wale || b.side == c.side) continue;
+        const Vec3 tip = point(pieces.from[at(b.runs.front().halfedges.front())]);
+        bool from_b = false;
+        std::optional<Run> stretch = take(c, b, tip, tip, from_b);
+        if (!stretch) continue;
+        Chain wale_side;
+        wale_side.side = Side::Wale;
+        wale_side.runs.push_back(std::move(*stretch));
+        ++stats.tip_sides;
+        out.insert(out.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::move(wale_side));
+        ++i;
         continue;
       }
+      // A short wale side on the boundary between two course chains.
+      Chain& a = out[(i + out.size() - 1) % out.size()];
+      Chain& b = out[(i + 1) % out.size()];
+      if (&a == &b || a.side == Side::Wale || b.side == Side::Wale) continue;
+      const bool boundary_only =
+          std::none_of(c.runs.begin(), c.runs.end(), [](const Run& r) { return r.level; });
+      if (!boundary_only) continue;
+      const Vec3 start = point(pieces.from[at(c.runs.front().halfedges.front())]);
+      const Vec3 end = point(pieces.to(c.runs.back().halfedges.back()));
+      if ((end - start).norm() >= length - tolerance) continue;
+      bool from_b = false;
+      std::optional<Run> stretch = take(a, b, end, start, from_b);
+      if (!stretch) continue;
+      if (from_b) {
+        c.runs.push_back(std::move(*stretch));
+      } else {
+        c.runs.insert(c.runs.begin(), std::move(*stretch));
+      }
       ++stats.tip_sides;
-      out.insert(out.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::move(wale_side));
-      ++i;
     }
   }
 

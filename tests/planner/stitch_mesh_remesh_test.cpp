@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -100,6 +103,62 @@ TEST(StitchMeshRemeshTest, RowsMeetingAnObliqueBoundaryEndInAWaleSide) {
   EXPECT_LT(s.increase + s.decrease, p.increase + p.decrease);
   EXPECT_GT(s.wale.within_15_percent, p.wale.within_15_percent + 0.05);
   expect_good_stitch_mesh(disc, 60.0 * 30.0, default_params(), "oblique parallelogram");
+}
+
+// Wale sides on the boundary shorter than `fraction` of the wale.
+int short_boundary_wale_sides(const StitchMesh& mesh, double fraction) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (const StitchFace& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      const std::uint32_t a = face.vertices[i];
+      const std::uint32_t b = face.vertices[(i + 1) % face.vertices.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  int count = 0;
+  for (const StitchFace& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      const std::uint32_t a = face.vertices[i];
+      const std::uint32_t b = face.vertices[(i + 1) % face.vertices.size()];
+      if (face.roles[i] != EdgeRole::Wale || uses[{std::min(a, b), std::max(a, b)}] != 1) continue;
+      if ((mesh.positions[a] - mesh.positions[b]).norm() < fraction * mesh.wale_mm) ++count;
+    }
+  }
+  return count;
+}
+
+// A right side that steps: 1.2 mm along the wale, then 3.8 mm of height
+// slanted 60 degrees from it, again and again. Where a row crosses a step
+// its end on the boundary is a wale side of the step's height at most; it is
+// lengthened along the slanted boundary to 0.9 wale, so no row ends in a
+// wale side much shorter than a row.
+TEST(StitchMeshRemeshTest, ShortWaleSidesOnTheBoundaryAreLengthened) {
+  const double slope = std::tan(60.0 * sd::kPi / 180.0);
+  auto right = [=](double y) {
+    const double period = 5.0;
+    const double step = 1.2;
+    const double k = std::floor(y / period);
+    const double in = y - k * period;
+    return 40.0 + slope * ((period - step) * k + std::max(0.0, in - step));
+  };
+  const LabelledDisc disc = sd::grid_disc(
+      40, 320, [&](double s, double t) { return Eigen::Vector3d(s * right(40 * t), 40 * t, 0.0); });
+  AnisoRemeshParams pointed = default_params();
+  pointed.tip_side_wales = 0;
+  const AnisoRemeshResult before = remesh_anisotropic(disc, pointed);
+  const AnisoRemeshResult after = remesh_anisotropic(disc, default_params());
+  for (const AnisoRemeshResult* r : {&before, &after}) {
+    EXPECT_TRUE(r->problems.empty());
+    EXPECT_LT(sd::farthest_boundary_vertex(disc, r->mesh), 1e-6 * 60);
+  }
+  const int short_before = short_boundary_wale_sides(before.mesh, 0.85);
+  const int short_after = short_boundary_wale_sides(after.mesh, 0.85);
+  std::printf(
+      "[steps] boundary wale sides under 0.85 wale: %d with rows ending in a point, %d "
+      "with row ends (%d made or lengthened)\n",
+      short_before, short_after, after.stats.tip_sides);
+  EXPECT_GE(short_before, 3);
+  EXPECT_LE(short_after, 1);
 }
 
 TEST(StitchMeshRemeshTest, MeshesACylinderCutOpen) {
