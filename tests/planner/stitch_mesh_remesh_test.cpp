@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "planner/stitch_mesh.hpp"
@@ -72,6 +73,21 @@ TEST(StitchMeshRemeshTest, MeshesAParallelogramWithSlantedSides) {
   expect_good_stitch_mesh(disc, 50.0 * 40.0, default_params(), "parallelogram");
 }
 
+// The disc meshed with rows ending in a point (tip_side_wales = 0) and with
+// the defaults; both valid, on the disc's boundary.
+std::pair<AnisoRemeshResult, AnisoRemeshResult> with_and_without_row_ends(
+    const LabelledDisc& disc) {
+  AnisoRemeshParams pointed = default_params();
+  pointed.tip_side_wales = 0;
+  std::pair<AnisoRemeshResult, AnisoRemeshResult> out{remesh_anisotropic(disc, pointed),
+                                                      remesh_anisotropic(disc, default_params())};
+  for (const AnisoRemeshResult* r : {&out.first, &out.second}) {
+    EXPECT_TRUE(r->problems.empty());
+    EXPECT_LT(sd::farthest_boundary_vertex(disc, r->mesh), 1e-6 * 60);
+  }
+  return out;
+}
+
 // Sides slanted 60 degrees from the wale: each row meets a side in a wedge,
 // its bottom and top chains ending in one point. With rows ending in a wale
 // side cut from the slanted boundary (the default), the wedge's stitches keep
@@ -82,14 +98,7 @@ TEST(StitchMeshRemeshTest, RowsMeetingAnObliqueBoundaryEndInAWaleSide) {
   const LabelledDisc disc = sd::grid_disc(40, 20, [=](double s, double t) {
     return Eigen::Vector3d(60 * s + 30 * shear * t, 30 * t, 0.0);
   });
-  AnisoRemeshParams pointed = default_params();
-  pointed.tip_side_wales = 0;
-  const AnisoRemeshResult with_point = remesh_anisotropic(disc, pointed);
-  const AnisoRemeshResult with_side = remesh_anisotropic(disc, default_params());
-  for (const AnisoRemeshResult* r : {&with_point, &with_side}) {
-    EXPECT_TRUE(r->problems.empty());
-    EXPECT_LT(sd::farthest_boundary_vertex(disc, r->mesh), 1e-6 * 60);
-  }
+  const auto [with_point, with_side] = with_and_without_row_ends(disc);
   EXPECT_EQ(with_point.stats.tip_sides, 0);
   EXPECT_GT(with_side.stats.tip_sides, 10);  // about two per row (10 rows)
   const StitchMeshFigures p = measure(with_point.mesh);
@@ -143,14 +152,7 @@ TEST(StitchMeshRemeshTest, ShortWaleSidesOnTheBoundaryAreLengthened) {
   };
   const LabelledDisc disc = sd::grid_disc(
       40, 320, [&](double s, double t) { return Eigen::Vector3d(s * right(40 * t), 40 * t, 0.0); });
-  AnisoRemeshParams pointed = default_params();
-  pointed.tip_side_wales = 0;
-  const AnisoRemeshResult before = remesh_anisotropic(disc, pointed);
-  const AnisoRemeshResult after = remesh_anisotropic(disc, default_params());
-  for (const AnisoRemeshResult* r : {&before, &after}) {
-    EXPECT_TRUE(r->problems.empty());
-    EXPECT_LT(sd::farthest_boundary_vertex(disc, r->mesh), 1e-6 * 60);
-  }
+  const auto [before, after] = with_and_without_row_ends(disc);
   const int short_before = short_boundary_wale_sides(before.mesh, 0.85);
   const int short_after = short_boundary_wale_sides(after.mesh, 0.85);
   std::printf(
