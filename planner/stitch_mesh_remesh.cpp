@@ -600,25 +600,108 @@ struct Builder {
     return disc.arcs[at(f)][at(pieces.source_side[at(h)])];
   }
 
-  // Stitch vertices along a run, every ~course_mm; arcs[i] for segment i.
+  // A boundary run's length in straight steps of course_mm: a jagged cut
+  // boundary is longer along its edges than across the stitches it holds
+  // (docs/stitch-mesh.md, step 3).
+  double straight_length(const Run& run) const {
+    const std::vector<double> along = lengths_along(run.halfedges);
+    const std::vector<double> walk =
+        straight_walk(run.halfedges, along, params.course_mm, std::numeric_limits<int>::max());
+    const Vec3 last = walk.empty() ? pieces.position[at(pieces.from[at(run.halfedges.front())])]
+                                   : point_along(run.halfedges, along, walk.back());
+    const Vec3 end = pieces.position[at(pieces.to(run.halfedges.back()))];
+    return static_cast<double>(walk.size()) * params.course_mm + (end - last).norm();
+  }
+
+  // Segments of a run `length` long: one per ~course_mm.
   int auto_count(double length) const {
     return std::max(1, static_cast<int>(std::lround(length / params.course_mm)));
   }
 
-  std::vector<int> sample(const std::vector<int>& halfedges, std::vector<std::int32_t>* arcs,
-                          int n) {
+  // Arc length at the end of each half-edge of a polyline (0 first).
+  std::vector<double> lengths_along(const std::vector<int>& halfedges) const {
     std::vector<double> along{0};
     for (int h : halfedges) {
       along.push_back(
           along.back() +
           (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm());
     }
+    return along;
+  }
+
+  // The point of a polyline at arc length t.
+  Vec3 point_along(const std::vector<int>& halfedges, const std::vector<double>& along,
+                   double t) const {
+    std::size_t k = 0;
+    while (k + 1 < halfedges.size() && along[k + 1] < t) ++k;
+    const double span = along[k + 1] - along[k];
+    const double w = span > 0 ? std::clamp((t - along[k]) / span, 0.0, 1.0) : 0.0;
+    return (1 - w) * pieces.position[at(pieces.from[at(halfedges[k])])] +
+           w * pieces.position[at(pieces.to(halfedges[k]))];
+  }
+
+  // Arc lengths of the points of a walk along a polyline that steps `step`
+  // in a straight line each time from its start, at most `limit` of them.
+  std::vector<double> straight_walk(const std::vector<int>& halfedges,
+                                    const std::vector<double>& along, double step,
+                                    int limit) const {
+    std::vector<double> out;
+    Vec3 last = pieces.position[at(pieces.from[at(halfedges.front())])];
+    for (std::size_t k = 0; k < halfedges.size() && static_cast<int>(out.size()) < limit; ++k) {
+      const Vec3 a = pieces.position[at(pieces.from[at(halfedges[k])])];
+      const Vec3 e = pieces.position[at(pieces.to(halfedges[k]))] - a;
+      const double ee = e.dot(e);
+      if (!(ee > 0)) continue;
+      double from = 0;
+      while (static_cast<int>(out.size()) < limit) {
+        // The farther point of this half-edge `step` from the last one.
+        const Vec3 g = a - last;
+        const double ge = g.dot(e);
+        const double root = ge * ge - ee * (g.dot(g) - step * step);
+        if (root < 0) break;
+        const double t = (-ge + std::sqrt(root)) / ee;
+        if (t > 1 || t < from) break;
+        last = a + t * e;
+        from = t;
+        out.push_back(along[k] + t * (along[k + 1] - along[k]));
+      }
+    }
+    return out;
+  }
+
+  // Stitch vertices along a run, n segments (arcs[i] for segment i): evenly
+  // along it, or with `straight` (a boundary run) in n equal straight steps,
+  // so the stitches along a jagged boundary are as wide as the others.
+  std::vector<int> sample(const std::vector<int>& halfedges, std::vector<std::int32_t>* arcs, int n,
+                          bool straight = false) {
+    const std::vector<double> along = lengths_along(halfedges);
     const double total = along.back();
+    std::vector<double> at_length;
+    for (int i = 1; i < n; ++i) at_length.push_back(total * i / n);
+    if (straight && n > 1) {
+      // The step whose walk of n - 1 steps ends one step from the run's end.
+      const Vec3 end = pieces.position[at(pieces.to(halfedges.back()))];
+      double lo = 0;
+      double hi = 2 * total / n;
+      std::vector<double> best;
+      for (int iteration = 0; iteration < 40; ++iteration) {
+        const double step = 0.5 * (lo + hi);
+        std::vector<double> walk = straight_walk(halfedges, along, step, n - 1);
+        if (static_cast<int>(walk.size()) < n - 1) {
+          hi = step;
+          continue;
+        }
+        const bool short_of_end = (end - point_along(halfedges, along, walk.back())).norm() > step;
+        best = std::move(walk);
+        (short_of_end ? lo : hi) = step;
+      }
+      if (static_cast<int>(best.size()) == n - 1) at_length = std::move(best);
+    }
     std::vector<int> out{stitch_vertex(pieces.from[at(halfedges.front())])};
     std::size_t h = 0;
     for (int i = 1; i <= n; ++i) {
-      const double s = total * i / n;
-      const double mid = total * (i - 0.5) / n;
+      const double s = i < n ? at_length[at(i - 1)] : total;
+      const double mid = 0.5 * ((i > 1 ? at_length[at(i - 2)] : 0.0) + s);
       std::size_t m = 0;
       while (m + 1 < halfedges.size() && along[m + 1] < mid) ++m;
       if (arcs != nullptr) arcs->push_back(arc_of(halfedges[m]));
@@ -680,8 +763,10 @@ struct Builder {
     std::vector<int> counts;
     for (const Run& run : chain.runs) {
       const std::vector<int>* done = run.level ? sampled_curve(run) : nullptr;
-      counts.push_back(done != nullptr ? static_cast<int>(done->size()) - 1
-                                       : std::max(minimum(run), auto_count(run.length)));
+      counts.push_back(
+          done != nullptr
+              ? static_cast<int>(done->size()) - 1
+              : std::max(minimum(run), auto_count(run.level ? run.length : straight_length(run))));
     }
     return counts;
   }
@@ -759,7 +844,7 @@ struct Builder {
         v = level_samples(run, counts[r]);
         run_arcs.assign(v.size() - 1, kNoArc);
       } else {
-        v = sample(run.halfedges, &run_arcs, counts[r]);
+        v = sample(run.halfedges, &run_arcs, counts[r], /*straight=*/true);
       }
       if (!out.empty() && out.back() == v.front()) {
         out.insert(out.end(), v.begin() + 1, v.end());

@@ -163,6 +163,49 @@ TEST(StitchMeshRemeshTest, ShortWaleSidesOnTheBoundaryAreLengthened) {
   EXPECT_LE(short_after, 1);
 }
 
+// Course sides on the boundary within 15% of the course, as a share.
+double boundary_course_share(const StitchMesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (const StitchFace& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      const std::uint32_t a = face.vertices[i];
+      const std::uint32_t b = face.vertices[(i + 1) % face.vertices.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  int all = 0;
+  int within = 0;
+  for (const StitchFace& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      const std::uint32_t a = face.vertices[i];
+      const std::uint32_t b = face.vertices[(i + 1) % face.vertices.size()];
+      if (face.roles[i] == EdgeRole::Wale || uses[{std::min(a, b), std::max(a, b)}] != 1) continue;
+      ++all;
+      const double r = (mesh.positions[a] - mesh.positions[b]).norm() / mesh.course_mm;
+      within += std::abs(r - 1) <= 0.15 ? 1 : 0;
+    }
+  }
+  return all > 0 ? static_cast<double>(within) / all : 0.0;
+}
+
+// A rectangle whose top edge zig-zags 0.9 mm up and down every 1 mm (a cut
+// along a jagged edge path): 35% longer along its edges than across. The
+// bind-off stitches there are spaced in straight steps of one course, so
+// they are as wide as the others (spaced along the edges, they would be a
+// quarter narrower, all outside 15%).
+TEST(StitchMeshRemeshTest, StitchesAlongAJaggedBoundaryKeepTheirWidth) {
+  const LabelledDisc disc = sd::grid_disc(60, 20, [](double s, double t) {
+    const int column = static_cast<int>(std::lround(s * 60));
+    const double zig = t > 0.999 && column % 2 == 1 ? 0.9 : 0.0;
+    return Eigen::Vector3d(60 * s, 30 * t + zig, 0.0);
+  });
+  const AnisoRemeshResult result = remesh_anisotropic(disc, default_params());
+  EXPECT_TRUE(result.problems.empty());
+  const double share = boundary_course_share(result.mesh);
+  std::printf("[jagged] boundary course sides within 15%%: %.3f\n", share);
+  EXPECT_GE(share, 0.9);
+}
+
 TEST(StitchMeshRemeshTest, MeshesACylinderCutOpen) {
   expect_good_stitch_mesh(sd::cylinder(15, 40), sd::cylinder_area(15, 40), default_params(),
                           "cylinder");
