@@ -114,24 +114,35 @@ TEST(StitchMeshRemeshTest, RowsMeetingAnObliqueBoundaryEndInAWaleSide) {
   expect_good_stitch_mesh(disc, 60.0 * 30.0, default_params(), "oblique parallelogram");
 }
 
-// Wale sides on the boundary shorter than `fraction` of the wale.
-int short_boundary_wale_sides(const StitchMesh& mesh, double fraction) {
+// The sides of a stitch mesh on its boundary (used by one face only): role
+// and length.
+std::vector<std::pair<EdgeRole, double>> boundary_sides(const StitchMesh& mesh) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  auto side = [](const StitchFace& face, std::size_t i) {
+    const std::uint32_t a = face.vertices[i];
+    const std::uint32_t b = face.vertices[(i + 1) % face.vertices.size()];
+    return std::make_pair(std::min(a, b), std::max(a, b));
+  };
+  for (const StitchFace& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) ++uses[side(face, i)];
+  }
+  std::vector<std::pair<EdgeRole, double>> out;
   for (const StitchFace& face : mesh.faces) {
     for (std::size_t i = 0; i < face.vertices.size(); ++i) {
-      const std::uint32_t a = face.vertices[i];
-      const std::uint32_t b = face.vertices[(i + 1) % face.vertices.size()];
-      ++uses[{std::min(a, b), std::max(a, b)}];
+      const auto [a, b] = side(face, i);
+      if (uses[{a, b}] == 1) {
+        out.emplace_back(face.roles[i], (mesh.positions[a] - mesh.positions[b]).norm());
+      }
     }
   }
+  return out;
+}
+
+// Wale sides on the boundary shorter than `fraction` of the wale.
+int short_boundary_wale_sides(const StitchMesh& mesh, double fraction) {
   int count = 0;
-  for (const StitchFace& face : mesh.faces) {
-    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
-      const std::uint32_t a = face.vertices[i];
-      const std::uint32_t b = face.vertices[(i + 1) % face.vertices.size()];
-      if (face.roles[i] != EdgeRole::Wale || uses[{std::min(a, b), std::max(a, b)}] != 1) continue;
-      if ((mesh.positions[a] - mesh.positions[b]).norm() < fraction * mesh.wale_mm) ++count;
-    }
+  for (const auto& [role, length] : boundary_sides(mesh)) {
+    count += role == EdgeRole::Wale && length < fraction * mesh.wale_mm ? 1 : 0;
   }
   return count;
 }
@@ -165,25 +176,12 @@ TEST(StitchMeshRemeshTest, ShortWaleSidesOnTheBoundaryAreLengthened) {
 
 // Course sides on the boundary within 15% of the course, as a share.
 double boundary_course_share(const StitchMesh& mesh) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
-  for (const StitchFace& face : mesh.faces) {
-    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
-      const std::uint32_t a = face.vertices[i];
-      const std::uint32_t b = face.vertices[(i + 1) % face.vertices.size()];
-      ++uses[{std::min(a, b), std::max(a, b)}];
-    }
-  }
   int all = 0;
   int within = 0;
-  for (const StitchFace& face : mesh.faces) {
-    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
-      const std::uint32_t a = face.vertices[i];
-      const std::uint32_t b = face.vertices[(i + 1) % face.vertices.size()];
-      if (face.roles[i] == EdgeRole::Wale || uses[{std::min(a, b), std::max(a, b)}] != 1) continue;
-      ++all;
-      const double r = (mesh.positions[a] - mesh.positions[b]).norm() / mesh.course_mm;
-      within += std::abs(r - 1) <= 0.15 ? 1 : 0;
-    }
+  for (const auto& [role, length] : boundary_sides(mesh)) {
+    if (role == EdgeRole::Wale) continue;
+    ++all;
+    within += std::abs(length / mesh.course_mm - 1) <= 0.15 ? 1 : 0;
   }
   return all > 0 ? static_cast<double>(within) / all : 0.0;
 }
