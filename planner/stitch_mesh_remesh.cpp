@@ -354,6 +354,7 @@ struct Pieces {
     return h + 1 < start[at(p) + 1] ? h + 1 : start[at(p)];
   }
   int to(int h) const { return from[at(next(h))]; }
+  double length(int h) const { return (position[at(to(h))] - position[at(from[at(h)])]).norm(); }
 };
 
 void link_twins(Pieces& out) {
@@ -479,6 +480,17 @@ Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const 
   }
   link_twins(out);
   return out;
+}
+
+// The larger t at which a + t e is `radius` from `centre`, or nullopt when
+// the line misses that sphere (or e is zero).
+std::optional<double> sphere_exit(const Vec3& a, const Vec3& e, const Vec3& centre, double radius) {
+  const Vec3 g = a - centre;
+  const double ee = e.dot(e);
+  const double ge = g.dot(e);
+  const double root = ge * ge - ee * (g.dot(g) - radius * radius);
+  if (!(ee > 0) || root < 0) return std::nullopt;
+  return (-ge + std::sqrt(root)) / ee;
 }
 
 // A point to add on a half-edge of the disc boundary: at parameter s from its start.
@@ -622,9 +634,7 @@ struct Builder {
   std::vector<double> lengths_along(const std::vector<int>& halfedges) const {
     std::vector<double> along{0};
     for (int h : halfedges) {
-      along.push_back(
-          along.back() +
-          (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm());
+      along.push_back(along.back() + pieces.length(h));
     }
     return along;
   }
@@ -650,16 +660,12 @@ struct Builder {
     for (std::size_t k = 0; k < halfedges.size() && static_cast<int>(out.size()) < limit; ++k) {
       const Vec3 a = pieces.position[at(pieces.from[at(halfedges[k])])];
       const Vec3 e = pieces.position[at(pieces.to(halfedges[k]))] - a;
-      const double ee = e.dot(e);
-      if (!(ee > 0)) continue;
       double from = 0;
       while (static_cast<int>(out.size()) < limit) {
         // The farther point of this half-edge `step` from the last one.
-        const Vec3 g = a - last;
-        const double ge = g.dot(e);
-        const double root = ge * ge - ee * (g.dot(g) - step * step);
-        if (root < 0) break;
-        const double t = (-ge + std::sqrt(root)) / ee;
+        const std::optional<double> exit = sphere_exit(a, e, last, step);
+        if (!exit) break;
+        const double t = *exit;
         if (t > 1 || t < from) break;
         last = a + t * e;
         from = t;
@@ -698,7 +704,6 @@ struct Builder {
       if (static_cast<int>(best.size()) == n - 1) at_length = std::move(best);
     }
     std::vector<int> out{stitch_vertex(pieces.from[at(halfedges.front())])};
-    std::size_t h = 0;
     for (int i = 1; i <= n; ++i) {
       const double s = i < n ? at_length[at(i - 1)] : total;
       const double mid = 0.5 * ((i > 1 ? at_length[at(i - 2)] : 0.0) + s);
@@ -709,13 +714,8 @@ struct Builder {
         out.push_back(stitch_vertex(pieces.to(halfedges.back())));
         break;
       }
-      while (h + 1 < halfedges.size() && along[h + 1] < s) ++h;
-      const double span = along[h + 1] - along[h];
-      const double w = span > 0 ? (s - along[h]) / span : 0;
-      const Vec3 p = (1 - w) * pieces.position[at(pieces.from[at(halfedges[h])])] +
-                     w * pieces.position[at(pieces.to(halfedges[h]))];
       out.push_back(static_cast<int>(mesh.positions.size()));
-      mesh.positions.push_back(p);
+      mesh.positions.push_back(point_along(halfedges, along, s));
     }
     return out;
   }
@@ -893,8 +893,7 @@ struct Builder {
     std::vector<Run> runs;
     for (int h : loop) {
       Run piece;
-      const double length =
-          (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
+      const double length = pieces.length(h);
       const int level = pieces.level[at(h)];
       if (level >= 0) {
         piece.level = true;
@@ -1051,11 +1050,9 @@ struct Builder {
     a.level = b.level = r.level;
     for (std::size_t k = 0; k < r.halfedges.size(); ++k) {
       const int h = r.halfedges[k];
-      const double len =
-          (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
       Run& into = k < count ? a : b;
       into.halfedges.push_back(h);
-      into.length += len;
+      into.length += pieces.length(h);
     }
     return {a, b};
   }
@@ -1097,13 +1094,9 @@ struct Builder {
           return from_front ? k : n - k;
         }
         // The point of this half-edge at that distance.
-        const Vec3 d = near - origin;
         const Vec3 e = far - near;
-        const double ee = e.dot(e);
-        const double de = d.dot(e);
-        const double root = de * de - ee * (d.dot(d) - length * length);
-        if (ee > 0 && root >= 0) {
-          const double s = std::clamp((-de + std::sqrt(root)) / ee, 0.0, 1.0);
+        if (const std::optional<double> exit = sphere_exit(near, e, origin, length)) {
+          const double s = std::clamp(*exit, 0.0, 1.0);
           // Parameter from the half-edge's own start.
           tip_splits.push_back({h, from_front ? s : 1.0 - s, near + s * e});
         }
@@ -1184,14 +1177,12 @@ struct Builder {
     for (const Run& r : chain.runs) {
       for (int h : r.halfedges) {
         all.push_back(h);
-        total +=
-            (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
+        total += pieces.length(h);
       }
     }
     double walked = 0;
     for (int h : all) {
-      walked +=
-          (pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])]).norm();
+      walked += pieces.length(h);
       if (walked >= 0.5 * total) return arc_of(h);
     }
     return all.empty() ? kNoArc : arc_of(all.back());
