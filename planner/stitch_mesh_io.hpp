@@ -33,6 +33,8 @@ struct StitchMeshReport {
   StitchMeshFigures figures;
   AnisoRemeshStats stats;
   StabilityCounts stability;
+  OffSurface off_surface;  // measured with tolerance off_surface_mm
+  double off_surface_mm = 0;
   double disc_area_mm2 = 0;
   double seconds = 0;  // the whole stage: read, mesh, write
 };

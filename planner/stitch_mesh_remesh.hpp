@@ -144,6 +144,19 @@ struct StabilityCounts {
 };
 StabilityCounts count_stability_rules(const StitchMesh& mesh);
 
+// Stitches that leave the surface: faces with a side whose midpoint is more
+// than `tolerance_mm` from the disc (the cut mesh). A stitch mesh follows its
+// surface to within a fraction of a stitch; a side that does not spans a gap
+// of it (the fans across a hole, docs/stitch-mesh.md), and the knitted piece
+// will not take the surface's shape there. Only sides longer than twice the
+// tolerance can be that far off, so only those are measured.
+struct OffSurface {
+  std::vector<std::size_t> faces;  // ascending
+  double max_offset_mm = 0;        // farthest side midpoint from the surface
+  std::size_t farthest_face = 0;   // the face with that side (when `faces` is not empty)
+};
+OffSurface off_surface_faces(const StitchMesh& mesh, const LabelledDisc& disc, double tolerance_mm);
+
 // Area and boundary length of the disc (for the expected stitch count).
 double disc_area_mm2(const LabelledDisc& disc);
 double disc_boundary_length_mm(const LabelledDisc& disc);

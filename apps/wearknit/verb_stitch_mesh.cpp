@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <ostream>
+#include <sstream>
 
 #include "apps/wearknit/cli.hpp"
 #include "knitout/output_file.hpp"
@@ -116,6 +117,19 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
     print_diagnostics(context, sink.diagnostics(), *format);
     return kExitInvalid;
   }
+  // Stitches more than a wale off the cut mesh span a gap of it (docs/stitch-mesh.md, "Fans").
+  const planner::OffSurface off_surface =
+      planner::off_surface_faces(result.mesh, disc, gauge.wale_mm);
+  if (!off_surface.faces.empty()) {
+    std::ostringstream message;
+    message << std::fixed << std::setprecision(1) << off_surface.faces.size()
+            << " stitches have a side more than one wale (" << gauge.wale_mm
+            << " mm) off the cut mesh's surface, up to " << off_surface.max_offset_mm
+            << " mm (at the stitch of `f` line " << off_surface.farthest_face + 1
+            << " of stitch-mesh.smobj): they span a gap of it, and the knitted piece will not "
+               "take the surface's shape there (docs/stitch-mesh.md, \"Fans\")";
+    sink.warning(cut_name, 0, 0, "P087", message.str());
+  }
   print_diagnostics(context, sink.diagnostics(), *format);
 
   const std::filesystem::path base(dir);
@@ -135,6 +149,8 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
   report.figures = planner::measure(result.mesh);
   report.stats = result.stats;
   report.stability = planner::count_stability_rules(result.mesh);
+  report.off_surface = off_surface;
+  report.off_surface_mm = gauge.wale_mm;
   report.disc_area_mm2 = planner::disc_area_mm2(disc);
   report.seconds = seconds_since(start);
   if (failure.empty()) failure = planner::merge_stitch_report(dir, report);

@@ -40,6 +40,11 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
   EXPECT_EQ(s.at("boundary_loops"), 1);
   EXPECT_TRUE(s.at("row_time_levelled").is_number_integer());
   EXPECT_TRUE(s.at("tip_sides").is_number_integer());
+  // Stitches off the surface are counted, and warned about when there are any.
+  EXPECT_DOUBLE_EQ(s.at("off_surface").at("tolerance_mm").get<double>(), 2.875);
+  const auto off_faces = s.at("off_surface").at("faces").get<std::size_t>();
+  EXPECT_EQ(off_faces > 0, result.err.find("P087") != std::string::npos) << result.err;
+  EXPECT_EQ(off_faces > 0, s.at("off_surface").at("max_offset_mm").get<double>() > 2.875);
 
   // --stitch-mm replaces the swatch; a run again replaces only its own member.
   const auto again =

@@ -43,6 +43,10 @@ void expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2,
   // Stitch count within 10% of area / (course x wale).
   const double expected = area_mm2 / (params.course_mm * params.wale_mm);
   EXPECT_NEAR(f.faces / expected, 1.0, 0.10);
+  // On the surface: no side's middle a wale away from it.
+  const OffSurface off = off_surface_faces(mesh, disc, params.wale_mm);
+  EXPECT_TRUE(off.faces.empty()) << off.faces.size() << " stitches off the surface, up to "
+                                 << off.max_offset_mm << " mm";
   std::printf(
       "[%s] faces %d (expected %.0f) knit %d inc %d dec %d short %d | course mean %.3f "
       "within %.3f | wale mean %.3f within %.3f | rows %d strips %d lenses %d | %.3f s\n",
@@ -202,6 +206,49 @@ TEST(StitchMeshRemeshTest, StitchesAlongAJaggedBoundaryKeepTheirWidth) {
   const double share = boundary_course_share(result.mesh);
   std::printf("[jagged] boundary course sides within 15%%: %.3f\n", share);
   EXPECT_GE(share, 0.9);
+}
+
+// A U of 10 mm squares in the plane z = 0 (three along the bottom, two up
+// each side): the notch between the arms is x in (10, 20), y in (10, 30).
+LabelledDisc u_shape() {
+  LabelledDisc disc;
+  for (int j = 0; j <= 3; ++j) {
+    for (int i = 0; i <= 3; ++i) disc.positions.emplace_back(10.0 * i, 10.0 * j, 0.0);
+  }
+  auto id = [](int i, int j) { return j * 4 + i; };
+  for (const auto& [i, j] :
+       std::vector<std::pair<int, int>>{{0, 0}, {1, 0}, {2, 0}, {0, 1}, {0, 2}, {2, 1}, {2, 2}}) {
+    disc.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    disc.directions.push_back({0, 1, 2, 3});
+  }
+  return disc;
+}
+
+TEST(StitchMeshRemeshTest, StitchesSpanningAGapOfTheSurfaceAreFound) {
+  const LabelledDisc disc = u_shape();
+  StitchMesh mesh;
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{
+           {5, 5}, {25, 5}, {25, 8}, {5, 8}, {5, 22}, {25, 22}, {25, 25}, {5, 25}}) {
+    mesh.positions.emplace_back(x, y, 0.0);
+  }
+  const std::vector<EdgeRole> knit{EdgeRole::CourseIn, EdgeRole::Wale, EdgeRole::CourseOut,
+                                   EdgeRole::Wale};
+  // Across the bottom of the U (on the surface), and across its notch.
+  mesh.faces.push_back({{0, 1, 2, 3}, knit, {kNoArc, kNoArc, kNoArc, kNoArc}, FaceType::Knit});
+  mesh.faces.push_back({{4, 5, 6, 7}, knit, {kNoArc, kNoArc, kNoArc, kNoArc}, FaceType::Knit});
+  // The sides across the notch have their middles at (15, 22) and (15, 25),
+  // 5 mm from the arms.
+  const OffSurface off = off_surface_faces(mesh, disc, 2.0);
+  EXPECT_EQ(off.faces, std::vector<std::size_t>{1});
+  EXPECT_EQ(off.farthest_face, 1u);
+  EXPECT_NEAR(off.max_offset_mm, 5.0, 1e-9);
+  // Within a larger tolerance nothing is off.
+  EXPECT_TRUE(off_surface_faces(mesh, disc, 5.5).faces.empty());
+  // Lifted 3 mm off the plane, the bottom face is off too.
+  for (std::size_t v = 0; v < 4; ++v) mesh.positions[v].z() = 3.0;
+  const OffSurface lifted = off_surface_faces(mesh, disc, 2.0);
+  EXPECT_EQ(lifted.faces, (std::vector<std::size_t>{0, 1}));
+  EXPECT_NEAR(lifted.max_offset_mm, 5.0, 1e-9);
 }
 
 TEST(StitchMeshRemeshTest, MeshesACylinderCutOpen) {

@@ -161,6 +161,11 @@ void expect_sizes(const Meshed& m, const Limits& limits) {
   EXPECT_GE(f.wale.within_15_percent, limits.wale_within);
   const double expected = disc_area_mm2(m.disc) / (p.course_mm * p.wale_mm);
   EXPECT_NEAR(f.faces / expected, 1.0, limits.stitches);
+  // Stitches that span a gap of the surface (the fans, docs/stitch-mesh.md) stay rare.
+  const OffSurface off = off_surface_faces(m.result.mesh, m.disc, p.wale_mm);
+  EXPECT_LE(static_cast<double>(off.faces.size()), 0.02 * f.faces) << off.max_offset_mm;
+  std::cout << "off the surface: " << off.faces.size() << " stitches, up to " << off.max_offset_mm
+            << " mm\n";
   std::cout << "figures: course mean " << f.course.mean_mm / p.course_mm << ", within 15% "
             << f.course.within_15_percent << "; wale mean " << f.wale.mean_mm / p.wale_mm
             << ", within 15% " << f.wale.within_15_percent << "; stitches / estimate "
