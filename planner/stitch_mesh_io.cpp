@@ -296,7 +296,7 @@ std::string merge_stitch_report(const std::string& dir, const StitchMeshReport& 
       {"off_surface",
        {{"faces", report.off_surface.faces.size()},
         {"max_offset_mm", report.off_surface.max_offset_mm},
-        {"tolerance_mm", report.off_surface_mm}}},
+        {"tolerance_mm", report.off_surface.tolerance_mm}}},
       {"boundary_loops", f.boundary_loops},
       {"euler_characteristic", f.euler_characteristic},
       {"remesh_seconds", report.stats.total_seconds},

@@ -33,8 +33,7 @@ struct StitchMeshReport {
   StitchMeshFigures figures;
   AnisoRemeshStats stats;
   StabilityCounts stability;
-  OffSurface off_surface;  // measured with tolerance off_surface_mm
-  double off_surface_mm = 0;
+  OffSurface off_surface;
   double disc_area_mm2 = 0;
   double seconds = 0;  // the whole stage: read, mesh, write
 };

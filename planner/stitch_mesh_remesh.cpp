@@ -18,6 +18,8 @@
 #include <unordered_set>
 #include <utility>
 
+#include "simulators/cloth/sdf.hpp"
+
 namespace planner {
 namespace {
 
@@ -2122,61 +2124,17 @@ StabilityCounts count_stability_rules(const StitchMesh& mesh) {
   return counts;
 }
 
-namespace {
-
-// Distance from p to triangle abc.
-double triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const double nn = n.squaredNorm();
-  auto segment = [&](const Vec3& x, const Vec3& y) {
-    const Vec3 e = y - x;
-    const double ee = e.squaredNorm();
-    const double s = ee > 0 ? std::clamp((p - x).dot(e) / ee, 0.0, 1.0) : 0.0;
-    return (x + s * e - p).norm();
-  };
-  if (nn > 0) {
-    // Inside the triangle's prism: the distance to its plane.
-    const Vec3 q = p - n * ((p - a).dot(n) / nn);
-    if ((b - a).cross(q - a).dot(n) >= 0 && (c - b).cross(q - b).dot(n) >= 0 &&
-        (a - c).cross(q - c).dot(n) >= 0) {
-      return (p - q).norm();
-    }
-  }
-  return std::min({segment(a, b), segment(b, c), segment(c, a)});
-}
-
-}  // namespace
-
 OffSurface off_surface_faces(const StitchMesh& mesh, const LabelledDisc& disc,
                              double tolerance_mm) {
   OffSurface out;
-  // Triangles of the disc (fans of its faces) with their bounding boxes.
-  struct Tri {
-    Vec3 a, b, c, lo, hi;
-  };
-  std::vector<Tri> tris;
+  out.tolerance_mm = tolerance_mm;
+  // The disc as triangles (fans of its faces), for exact distances.
+  std::vector<std::array<int, 3>> triangles;
   for (const std::vector<int>& face : disc.faces) {
-    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-      Tri t{disc.positions[at(face[0])],
-            disc.positions[at(face[i])],
-            disc.positions[at(face[i + 1])],
-            {},
-            {}};
-      t.lo = t.a.cwiseMin(t.b).cwiseMin(t.c);
-      t.hi = t.a.cwiseMax(t.b).cwiseMax(t.c);
-      tris.push_back(t);
-    }
+    for (std::size_t i = 1; i + 1 < face.size(); ++i)
+      triangles.push_back({face[0], face[i], face[i + 1]});
   }
-  // Distance from p to the surface.
-  auto distance = [&](const Vec3& p) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const Tri& t : tris) {
-      const Vec3 gap = (t.lo - p).cwiseMax(p - t.hi).cwiseMax(Vec3::Zero());
-      if (gap.norm() >= best) continue;  // the box is farther than the nearest so far
-      best = std::min(best, triangle_distance(p, t.a, t.b, t.c));
-    }
-    return best;
-  };
+  const cloth::TriangleMeshQuery surface(disc.positions, std::move(triangles));
   std::unordered_map<std::uint64_t, double> offset_of;  // side -> midpoint distance
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const std::vector<std::uint32_t>& v = mesh.faces[f].vertices;
@@ -2189,7 +2147,7 @@ OffSurface off_surface_faces(const StitchMesh& mesh, const LabelledDisc& disc,
       const std::uint64_t side = key(static_cast<int>(std::min(v[i], v[(i + 1) % v.size()])),
                                      static_cast<int>(std::max(v[i], v[(i + 1) % v.size()])));
       auto [it, fresh] = offset_of.emplace(side, 0.0);
-      if (fresh) it->second = distance(0.5 * (p + q));
+      if (fresh) it->second = surface.distance(0.5 * (p + q));
       worst = std::max(worst, it->second);
     }
     if (worst > tolerance_mm) {

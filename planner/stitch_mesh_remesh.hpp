@@ -154,6 +154,7 @@ struct OffSurface {
   std::vector<std::size_t> faces;  // ascending
   double max_offset_mm = 0;        // farthest side midpoint from the surface
   std::size_t farthest_face = 0;   // the face with that side (when `faces` is not empty)
+  double tolerance_mm = 0;         // as given
 };
 OffSurface off_surface_faces(const StitchMesh& mesh, const LabelledDisc& disc, double tolerance_mm);
 

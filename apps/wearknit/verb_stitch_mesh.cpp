@@ -150,7 +150,6 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
   report.stats = result.stats;
   report.stability = planner::count_stability_rules(result.mesh);
   report.off_surface = off_surface;
-  report.off_surface_mm = gauge.wale_mm;
   report.disc_area_mm2 = planner::disc_area_mm2(disc);
   report.seconds = seconds_since(start);
   if (failure.empty()) failure = planner::merge_stitch_report(dir, report);
