@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 shared=${WEARKNIT_SHARED:-../shared}
-ninja -C "$build" cloth_bench make_cover_cut wearknit >/dev/null
+ninja -C "$build" cloth_bench make_cover_cut strip_rate wearknit >/dev/null
 echo "== machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
 "$build/bench/cloth_bench" --benchmark_counters_tabular=true
 dir=$(mktemp -d)
@@ -17,4 +17,6 @@ echo "== elimination, bunny cover, K=4, 2 threads"
 /usr/bin/time -f "elapsed %e s, user %U s, system %S s" \
   "$build/apps/wearknit/wearknit" wearability "$dir/bunny-cut" \
   --wearer "$shared/meshes/bunny.obj" --threads 2 --seed 1 --quiet
+echo "== one trial's success rate on the labels just written (24 trials, 3 more closed)"
+"$build/bench/strip_rate" "$dir/bunny-cut" "$shared/meshes/bunny.obj" 24 3 2
 echo "== machine after: load average $(cut -d' ' -f1-3 /proc/loadavg)"
