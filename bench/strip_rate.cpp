@@ -80,7 +80,10 @@ int main(int argc, char** argv) {
   const cloth::SignedDistanceField field(wearer->vertices, wearer->faces, sdf);
   cloth::ClothParams params;
   params.threads = 1;
-  const planner::CoverMesh garment = planner::dressed(*cover, field, params);
+  // As the stage does by default (--cloth-vertices 500): a coarse garment is
+  // subdivided for the cloth, its arcs keeping their indices.
+  const planner::CoverMesh garment =
+      planner::dressed(planner::refined_for_cloth(*cover, 500), field, params);
 
   // Configuration 0 is the labelled one; configuration c > 0 closes one more
   // laced arc, spread evenly over the laced arcs.
