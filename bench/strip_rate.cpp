@@ -14,7 +14,6 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -24,6 +23,7 @@
 
 #include "planner/wearability.hpp"
 #include "planner/wearability_io.hpp"
+#include "planner/wearability_recut.hpp"
 
 namespace {
 
@@ -53,23 +53,19 @@ int main(int argc, char** argv) {
   const int threads = argc > 5 ? std::max(1, std::atoi(argv[5])) : 2;
 
   knitout::DiagnosticSink sink;
-  const auto cut = planner::read_obj_file(dir + "/cut-mesh.obj", sink);
+  // As the stage reads it by default (--cloth-vertices 500): a coarse garment
+  // is subdivided for the cloth, its arcs keeping their indices.
+  const auto folder = planner::read_cut_folder(dir, sink, 500);
   const auto wearer = planner::read_obj_file(argv[2], sink);
-  std::ifstream in(dir + "/cuts.json");
-  const nlohmann::json cuts = nlohmann::json::parse(in, nullptr, false);
-  if (!cut || !wearer || cuts.is_discarded()) {
-    knitout::print_text(std::cerr, sink.diagnostics());
-    std::cerr << "strip_rate: cannot read " << dir << " or " << argv[2] << '\n';
-    return 1;
-  }
-  const auto cover = planner::read_cover_mesh(*cut, cuts, dir + "/cuts.json", sink);
-  if (!cover) {
+  if (!folder || !wearer) {
     knitout::print_text(std::cerr, sink.diagnostics());
     return 1;
   }
-  std::vector<bool> open(cover->arcs.size(), false);
+  const planner::CoverMesh& cover = folder->cover;
+  const nlohmann::json& cuts = folder->cuts;
+  std::vector<bool> open(cover.arcs.size(), false);
   std::vector<int> laced;
-  for (std::size_t a = 0; a < cover->arcs.size(); ++a) {
+  for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
     const auto& arc = cuts["arcs"][a];
     open[a] = !arc.contains("label") || arc["label"] != "sew";
     if (open[a]) laced.push_back(static_cast<int>(a));
@@ -80,10 +76,7 @@ int main(int argc, char** argv) {
   const cloth::SignedDistanceField field(wearer->vertices, wearer->faces, sdf);
   cloth::ClothParams params;
   params.threads = 1;
-  // As the stage does by default (--cloth-vertices 500): a coarse garment is
-  // subdivided for the cloth, its arcs keeping their indices.
-  const planner::CoverMesh garment =
-      planner::dressed(planner::refined_for_cloth(*cover, 500), field, params);
+  const planner::CoverMesh garment = planner::dressed(cover, field, params);
 
   // Configuration 0 is the labelled one; configuration c > 0 closes one more
   // laced arc, spread evenly over the laced arcs.
@@ -121,7 +114,7 @@ int main(int argc, char** argv) {
   for (auto& thread : pool) thread.join();
 
   std::printf("%s: %zu arcs, %zu laced; %d trials per configuration, at most %d steps\n",
-              dir.c_str(), cover->arcs.size(), laced.size(), trials, params.max_steps);
+              dir.c_str(), cover.arcs.size(), laced.size(), trials, params.max_steps);
   std::printf("%-22s | %-36s | %s\n", "configuration", "with the stall stop", "without it");
   std::printf("%-22s | %-36s | %s\n", "", "off / steps when off / stalled / steps",
               "off / steps when off / steps");
