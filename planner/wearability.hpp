@@ -37,7 +37,9 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "simulators/cloth/cloth.hpp"
@@ -96,6 +98,27 @@ CoverMesh refined_for_cloth(CoverMesh mesh, int min_vertices);
 cloth::ClothMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
                            std::vector<int>* source = nullptr);
 
+struct TestResult;
+
+// Tests already run, looked up before a test is simulated and added after.
+// An elimination cut short (the process killed, the machine restarted)
+// resumes from them: the simulation is deterministic, so a test of the same
+// dressed garment, configuration and seed, under the same parameters and
+// wearer, has the same result. Keys come from the elimination (test_key);
+// the record's owner makes sure the parameters and the wearer match
+// (TestJournal, planner/wearability_journal.hpp, keeps them in a file).
+class TestRecord {
+ public:
+  virtual ~TestRecord() = default;
+  virtual std::optional<TestResult> find(std::uint64_t key) = 0;
+  virtual void add(std::uint64_t key, const TestResult& result) = 0;
+};
+
+// A 64-bit fingerprint of bytes (SplitMix64 over 8-byte words), for keys and
+// for telling whether a record was made with the same inputs; not a
+// cryptographic digest.
+std::uint64_t fingerprint(std::string_view bytes, std::uint64_t seed = 0);
+
 struct WearabilityParams {
   cloth::ClothParams cloth;  // every trial's simulation (its `threads` is ignored)
   // K: trials per test, each with its own global-force directions. An arc is
@@ -109,6 +132,8 @@ struct WearabilityParams {
   // The longest run closed in one test.
   int max_group = 32;
   std::uint64_t seed = 1;
+  // Not owned; when set, every test is looked up here first and added after.
+  TestRecord* record = nullptr;
 };
 
 struct TrialOutcome {
@@ -146,6 +171,7 @@ struct EliminationResult {
   std::vector<int> order;       // arcs in the order they were tested
   std::vector<ArcResult> arcs;  // by arc index
   int tests = 0;                // tests run after the initial one
+  int replayed = 0;             // tests (the initial one included) read from params.record
   double seconds = 0;
   std::uint64_t steps = 0;
   std::uint64_t projections = 0;
@@ -164,6 +190,12 @@ using ProgressCallback = std::function<void(const Progress&)>;
 // the starting configuration of every trial.
 CoverMesh dressed(const CoverMesh& mesh, const cloth::SignedDistanceField& wearer,
                   const cloth::ClothParams& params);
+
+// The key under which a test of `open` with `seed` on the dressed garment
+// whose fingerprint is `garment` is recorded (TestRecord).
+std::uint64_t test_key(std::uint64_t garment, const std::vector<bool>& open, std::uint64_t seed);
+// The fingerprint of a (dressed) garment: its vertices, faces and arcs.
+std::uint64_t fingerprint(const CoverMesh& mesh);
 
 // One wearability test of the configuration `open` (mesh already dressed).
 // `seed` picks the trials' direction seeds.

@@ -226,6 +226,8 @@ void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study,
     for (const auto& arc : result->arcs) sewn += arc.label == Label::Sew;
     summary["sewn"] = sewn;
     summary["tests"] = result->tests + 1;
+    // Tests of a run cut short, read from its journal instead of simulated.
+    summary["tests_replayed"] = result->replayed;
     summary["laced"] = static_cast<int>(result->arcs.size()) - sewn;
   }
   cuts["wearability"] = summary;

@@ -1,11 +1,15 @@
 #include "tests/test_support.hpp"
 
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <thread>
 
 namespace wearknit::test {
 
@@ -25,6 +29,29 @@ std::filesystem::path make_temp_dir(const std::string& prefix) {
   std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
   if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
   return pattern;
+}
+
+bool run_wearknit_and_kill(const std::string& args, const std::filesystem::path& watch, int lines) {
+  const auto dir = make_temp_dir("wearknit-kill");
+  const auto pid_file = dir / "pid";
+  const std::string command = std::string("'") + WEARKNIT_BINARY + "' " + args +
+                              " >/dev/null 2>&1 </dev/null & echo $! >'" + pid_file.string() +
+                              "'; wait";
+  std::thread runner([&] { [[maybe_unused]] const int status = std::system(command.c_str()); });
+  bool killed = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (!killed && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (!std::filesystem::exists(watch)) continue;
+    const std::string text = read_file(watch);
+    if (std::count(text.begin(), text.end(), '\n') < lines) continue;
+    const std::string pid = read_file(pid_file);
+    if (pid.empty()) continue;
+    killed = ::kill(static_cast<pid_t>(std::stol(pid)), SIGKILL) == 0;
+  }
+  runner.join();
+  std::filesystem::remove_all(dir);
+  return killed;
 }
 
 CommandResult run_wearknit(const std::string& args, const std::string& stdin_text) {

@@ -42,6 +42,11 @@ struct CommandResult {
 // stdout and stderr.
 CommandResult run_wearknit(const std::string& args, const std::string& stdin_text = "");
 
+// Starts the wearknit binary with `args` (output discarded) and kills it
+// (SIGKILL) as soon as the file `watch` has at least `lines` lines. Returns
+// whether it was killed (false: it ended first, or not within 5 minutes).
+bool run_wearknit_and_kill(const std::string& args, const std::filesystem::path& watch, int lines);
+
 // A fresh empty folder under the system temp dir, removed by the caller.
 std::filesystem::path make_temp_dir(const std::string& prefix);
 

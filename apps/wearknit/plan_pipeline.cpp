@@ -182,15 +182,20 @@ std::string write_text(const fs::path& path, const std::string& text) {
   return knitout::write_file_atomically(path.string(), [&](std::ostream& out) { out << text; });
 }
 
-// Copies the regular files at the top of `from` (not its folders) into
-// `to`, which is made empty first.
+// The wearability stage's record of its tests: it lives in the plan folder
+// itself, outside the staging folders (which every plan empties), so a plan
+// cut short resumes its wearability stage; the stage deletes it when done.
+constexpr const char* kJournal = "wearability.journal";
+
+// Copies the regular files at the top of `from` (not its folders, not the
+// journal) into `to`, which is made empty first.
 std::string make_staging(const fs::path& from, const fs::path& to) {
   std::error_code ec;
   fs::remove_all(to, ec);
   fs::create_directories(to, ec);
   if (ec) return to.string() + ": cannot create folder: " + ec.message();
   for (const auto& entry : fs::directory_iterator(from, ec)) {
-    if (!entry.is_regular_file()) continue;
+    if (!entry.is_regular_file() || entry.path().filename() == kJournal) continue;
     fs::copy_file(entry.path(), to / entry.path().filename(), ec);
     if (ec) return entry.path().string() + ": cannot copy: " + ec.message();
   }
@@ -372,7 +377,8 @@ int run_plan_pipeline(const PlanOptions& options, Context& context) {
   const auto cut_mesh_bytes = slurp(dir / "cut-mesh.obj");
 
   const std::vector<std::string> wear_args =
-      with({wear_dir.string(), "--wearer", wearer_path.string(), "--seed", seed},
+      with({wear_dir.string(), "--wearer", wearer_path.string(), "--seed", seed, "--journal",
+            (dir / kJournal).string()},
            options.wearability_args);
   std::vector<std::string> stitch_args = {knit_dir.string()};
   if (!options.pictures) stitch_args.push_back("--no-picture");

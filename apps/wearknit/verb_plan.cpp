@@ -78,7 +78,10 @@ int run_plan(const std::vector<std::string>& args, Context& context) {
   }
   options.add_options()("threads", po::value<std::string>(),
                         "wearability and schedule: threads (default 0: all cores)")(
-      "one-at-a-time", "wearability: test each arc on its own (§5) instead of runs of arcs");
+      "one-at-a-time", "wearability: test each arc on its own (§5) instead of runs of arcs")(
+      "restart",
+      "wearability: ignore the tests of a plan cut short (kept in DIR/wearability.journal) and "
+      "start again");
   po::positional_options_description positional;
   positional.add("garment", 1);
   po::variables_map values;
@@ -138,6 +141,7 @@ int run_plan(const std::vector<std::string>& args, Context& context) {
     }
   }
   if (values.count("one-at-a-time")) plan.wearability_args.push_back("--one-at-a-time");
+  if (values.count("restart")) plan.wearability_args.push_back("--restart");
   plan.pictures = values.count("no-pictures") == 0;
   plan.quiet = values.count("quiet") != 0;
   return run_plan_pipeline(plan, context);

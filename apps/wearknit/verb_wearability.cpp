@@ -15,6 +15,7 @@
 #include "knitout/output_file.hpp"
 #include "planner/wearability.hpp"
 #include "planner/wearability_io.hpp"
+#include "planner/wearability_journal.hpp"
 #include "planner/wearability_recut.hpp"
 
 namespace wearknit::cli {
@@ -145,10 +146,33 @@ std::uint64_t final_seed(const planner::EliminationResult& result) {
   return last->trials.empty() ? 0 : last->trials.back().seed;
 }
 
+std::optional<std::string> slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+// What decides a test besides the garment, the configuration and the seed
+// (which the journal's keys hold): the program itself (a changed simulation
+// must not reuse old results), the wearer, and the options the simulation
+// reads.
+std::uint64_t journal_context(const std::string& wearer_path, const planner::WearabilityParams& p,
+                              int resolution) {
+  std::ostringstream text;
+  const auto program = slurp("/proc/self/exe");
+  const auto wearer = slurp(wearer_path);
+  text << "program " << (program ? planner::fingerprint(*program) : 0) << " wearer "
+       << (wearer ? planner::fingerprint(*wearer) : 0) << " trials " << p.trials << " max-steps "
+       << p.cloth.max_steps << " resolution " << resolution;
+  return planner::fingerprint(text.str());
+}
+
 }  // namespace
 
 int run_wearability(const std::vector<std::string>& args, Context& context) {
-  std::string dir, wearer_path, frames_dir;
+  std::string dir, wearer_path, frames_dir, journal_path;
   planner::WearabilityParams params;
   int runs = 1, frame_every = 10, resolution = cloth::SdfParams{}.resolution;
   planner::RecutParams recut;
@@ -176,6 +200,10 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
       "frames", po::value<std::string>(&frames_dir),
       "write the strip-off of the final configuration as OBJ files into this folder")(
       "frame-every", po::value<int>(&frame_every)->default_value(10), "steps between frames")(
+      "journal", po::value<std::string>(&journal_path),
+      "keep every test here as it ends, so a run cut short resumes (default "
+      "DIR/wearability.journal; deleted when the stage finishes)")(
+      "restart", "ignore the tests of a run cut short and start again")(
       "one-at-a-time",
       "test each arc on its own, as §5 does, instead of closing runs of arcs together while "
       "the garment keeps coming off")("quiet,q", "no progress display");
@@ -207,6 +235,19 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
                                      [](const auto& d) { return d.code == "W004"; });
     return missing ? kExitUsage : kExitInvalid;
   }
+
+  if (journal_path.empty()) journal_path = (fs::path(dir) / "wearability.journal").string();
+  planner::TestJournal journal(journal_path, journal_context(wearer_path, params, resolution),
+                               values.count("restart") != 0);
+  if (!journal.error().empty()) {
+    context.err << "wearknit wearability: warning: " << journal.error()
+                << " (the tests run, but a run cut short starts again)\n";
+  } else if (journal.loaded() > 0 && show_progress) {
+    context.out << "resuming: " << journal.loaded() << " tests of a run cut short read from "
+                << journal.path() << '\n';
+  }
+  params.record = &journal;
+  const bool journal_ok = journal.error().empty();
 
   if (show_progress) context.out << "building the wearer's distance field..." << std::flush;
   cloth::SdfParams sdf_params;
@@ -240,6 +281,10 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   planner::CutFolderStudy folder_study = planner::study_cut_folder(
       dir, std::move(*folder), field, params, runs, recut, recut_sink, progress, on_attempt);
   if (show_progress) context.out << "\r\033[K";
+  if (journal_ok && !journal.error().empty()) {
+    context.err << "wearknit wearability: warning: " << journal.error()
+                << " (tests after it were not kept)\n";
+  }
   print_diagnostics(context, recut_sink.diagnostics(), DiagnosticFormat::Text);
   const planner::LacingStudy& study = folder_study.study;
   const planner::CoverMesh* cover = &folder_study.folder.cover;
@@ -267,6 +312,11 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   if (!failure.empty()) {
     context.err << "wearknit wearability: " << failure << '\n';
     return kExitUsage;
+  }
+  // The results are written: the journal has done its work.
+  params.record = nullptr;
+  if (const std::string removed = journal.remove(); !removed.empty()) {
+    context.err << "wearknit wearability: warning: " << removed << '\n';
   }
 
   if (chosen < 0) {
@@ -299,9 +349,11 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   for (const auto& arc : result.arcs) sewn += arc.label == planner::Label::Sew;
   double seconds = 0;
   std::uint64_t steps = 0;
+  int replayed = 0;
   for (const auto& run : study.runs) {
     seconds += run.seconds;
     steps += run.steps;
+    replayed += run.replayed;
   }
   context.out << "wearability: " << cover->arcs.size() << " arcs, " << sewn << " sew, "
               << cover->arcs.size() - sewn << " lace";
@@ -311,7 +363,9 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
                 << folder_study.attempts.size() - 1 << " of " << recut.limit << ")";
   }
   context.out << "; " << steps << " steps in " << std::fixed << std::setprecision(1) << seconds
-              << " s\n"
+              << " s";
+  if (replayed > 0) context.out << " (" << replayed << " tests read from the journal)";
+  context.out << "\n"
               << "wrote " << cuts_path << " and " << picture_path << '\n';
 
   if (!frames_dir.empty()) {

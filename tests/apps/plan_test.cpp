@@ -27,6 +27,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using test::read_file;
 using test::run_wearknit;
+using test::run_wearknit_and_kill;
 using test::write_file;
 
 // An all-quad ellipsoid as OBJ text (planner::quad_ellipsoid).
@@ -237,6 +238,29 @@ TEST_F(PlanTest, RejectsBadOptionsBeforeAnyStage) {
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(result.err, "wearknit plan: give --scale or --size-mm, not both\n");
   EXPECT_FALSE(fs::exists(*dir_ / "e"));
+}
+
+TEST_F(PlanTest, APlanKilledInItsWearabilityStageResumesIt) {
+  // Plan "c" is plan "a" without the machine, killed once its wearability
+  // stage has put the initial test and one more into the plan folder's
+  // journal; run again, it reads them back and ends with plan "a"'s labels.
+  ASSERT_EQ(plan_a_->exit_code, 0) << plan_a_->err;
+  const fs::path plan = *dir_ / "c";
+  const fs::path journal = plan / "wearability.journal";
+  ASSERT_TRUE(run_wearknit_and_kill(plan_command("c", "-q"), journal, 3))
+      << "the plan ended before it could be killed";
+  EXPECT_FALSE(fs::exists(plan / "report.json") &&
+               read_json(plan / "report.json").contains("schedule"))
+      << "killed before the merge: no stage's results are in the plan folder yet";
+  const auto result = run_wearknit(plan_command("c", "-q"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(read_file(plan / "plan.log").find("tests read from the journal"), std::string::npos)
+      << read_file(plan / "plan.log");
+  const json cuts = read_json(plan / "cuts.json");
+  EXPECT_GE(cuts["wearability"]["tests_replayed"].get<int>(), 2);
+  EXPECT_EQ(cuts["arcs"], read_json(*dir_ / "a" / "cuts.json")["arcs"]);
+  EXPECT_FALSE(fs::exists(journal)) << "the finished stage deletes its journal";
+  EXPECT_FALSE(fs::exists(plan / ".plan-wear" / "wearability.journal"));
 }
 
 TEST(DemoTest, RunsThePipelineOnItsOwnShape) {

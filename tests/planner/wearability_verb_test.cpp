@@ -236,6 +236,52 @@ TEST(WearabilityVerbTest, NoWearableCutWithinTheLimitIsW020NamingEveryAttempt) {
   fs::remove_all(dir);
 }
 
+std::vector<std::string> labels_of(const fs::path& dir) {
+  std::vector<std::string> labels;
+  const auto cuts = nlohmann::json::parse(read_file(dir / "cuts.json"));
+  for (const auto& arc : cuts["arcs"]) labels.push_back(arc.value("label", ""));
+  return labels;
+}
+
+TEST(WearabilityVerbTest, ARunKilledMidwayResumesFromItsJournal) {
+  const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  const fs::path dir = write_cut_folder(cover, "wearability-killed");
+  const fs::path whole = write_cut_folder(cover, "wearability-whole");
+  const CoverMesh ring = torus_mesh(1.0, 0.4, 48, 24);
+  write_file(dir / "torus.obj", obj_text(ring.vertices, ring.faces));
+  const std::string options = " --wearer " + (dir / "torus.obj").string() +
+                              " --trials 2 --max-steps 1500 --seed 5 --resolution 32";
+  const fs::path journal = dir / "wearability.journal";
+
+  // The run as it goes when nothing stops it: no journal is left behind.
+  const auto reference = run_wearknit("wearability " + whole.string() + options);
+  ASSERT_EQ(reference.exit_code, 0) << reference.err;
+  EXPECT_EQ(reference.out.find("journal"), std::string::npos) << reference.out;
+  EXPECT_FALSE(fs::exists(whole / "wearability.journal"));
+  const auto expected = labels_of(whole);
+
+  // The same run killed (SIGKILL) once the initial test and two more are in
+  // its journal.
+  const std::string before = read_file(dir / "cuts.json");
+  const bool killed =
+      run_wearknit_and_kill("wearability " + dir.string() + options + " -q", journal, 4);
+  ASSERT_TRUE(killed) << "the run ended before it could be killed";
+  ASSERT_TRUE(fs::exists(journal));
+  EXPECT_EQ(read_file(dir / "cuts.json"), before) << "a killed run writes no labels";
+
+  const auto resumed = run_wearknit("wearability " + dir.string() + options);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find("tests read from the journal"), std::string::npos) << resumed.out;
+  EXPECT_EQ(labels_of(dir), expected);
+  const auto cuts = nlohmann::json::parse(read_file(dir / "cuts.json"));
+  EXPECT_GE(cuts["wearability"]["tests_replayed"].get<int>(), 3);
+  EXPECT_EQ(cuts["arcs"], nlohmann::json::parse(read_file(whole / "cuts.json"))["arcs"])
+      << "the same tests, trial by trial";
+  EXPECT_FALSE(fs::exists(journal)) << "the finished stage deletes its journal";
+  fs::remove_all(dir);
+  fs::remove_all(whole);
+}
+
 TEST(WearabilityVerbTest, BadFolderGivesDiagnostics) {
   const fs::path dir = make_temp_dir("wearability-bad");
   write_file(dir / "cut-mesh.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
