@@ -1,8 +1,10 @@
 #include "apps/wearknit/cli.hpp"
 
 #include <algorithm>
+#include <fstream>
 #include <iomanip>
 #include <ostream>
+#include <sstream>
 
 namespace wearknit::cli {
 
@@ -134,6 +136,14 @@ void print_diagnostics(Context& context, const std::vector<knitout::Diagnostic>&
       knitout::print_text(context.err, diagnostics);
       return;
   }
+}
+
+std::optional<std::string> slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace wearknit::cli

@@ -54,6 +54,9 @@ inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The whole content of a file, or nullopt when it cannot be opened.
+std::optional<std::string> slurp(const std::string& path);
+
 // Diagnostic output formats shared by the verbs that read input.
 enum class DiagnosticFormat { Text, Json, Junit, Github };
 std::optional<DiagnosticFormat> parse_diagnostic_format(std::string_view name);

@@ -162,14 +162,6 @@ class StageBoard {
 
 // ---------------------------------------------------------------- files
 
-std::optional<std::string> slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // A JSON object from `path`: empty when absent or not an object.
 json read_object(const fs::path& path) {
   std::ifstream in(path);

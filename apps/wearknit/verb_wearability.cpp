@@ -146,14 +146,6 @@ std::uint64_t final_seed(const planner::EliminationResult& result) {
   return last->trials.empty() ? 0 : last->trials.back().seed;
 }
 
-std::optional<std::string> slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 // What decides a test besides the garment, the configuration and the seed
 // (which the journal's keys hold): the program itself (a changed simulation
 // must not reuse old results), the wearer, and the options the simulation
