@@ -7,6 +7,9 @@
 # Environment: PLAN_OPTS extra options for every plan (e.g. "--wear-trials 2"),
 # MESHES a list of file names instead of every closed mesh, OUT the folder for
 # the plans (default a temporary one, removed), TIMEOUT seconds per mesh (600).
+# Run again with the same OUT after a timeout: each plan resumes its
+# wearability stage from the journal in its folder (the table says how many
+# tests it read back; its times are those of the last run).
 source "$(dirname "$0")/plan_common.sh"
 if [ -z "${MESHES:-}" ]; then
   MESHES=$(cd "$shared/meshes" && python3 tools/meshstats.py stats --json ./*.obj |

@@ -60,10 +60,27 @@ for arg in sys.argv[1:]:
         times[base] = times.get(base, 0.0) + stage["time_s"]
         if stage["exit"] != 0:
             failed.append(base)
+    # A plan run again after it was cut short resumes its wearability stage
+    # from the journal; its times are then those of the last run only.
+    try:
+        with open(os.path.join(folder, "cuts.json")) as f:
+            wear = json.load(f).get("wearability", {})
+    except (OSError, ValueError):
+        wear = {}
+    replayed = wear.get("tests_replayed", 0)
+    try:
+        with open(os.path.join(folder, "wearability.journal")) as f:
+            journal = sum(1 for _ in f) - 1
+    except OSError:
+        journal = 0
     if exit_code == "0":
         result = "ok" + (" (re-cut)" if plan.get("recut") else "")
+        if replayed:
+            result += " (resumed: %d of %d tests from the journal)" % (replayed, wear.get("tests", 0))
     elif exit_code == "124":
         result = "timeout after %s s%s" % (wall, partial)
+        if journal > 0:
+            result += " (%d tests in its journal)" % journal
     elif failed:
         result = "failed: " + ", ".join(failed)
     elif not plan:
