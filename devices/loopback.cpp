@@ -1,6 +1,12 @@
 #include "devices/loopback.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
+#include <filesystem>
 #include <thread>
 
 #include "devices/device_engine.hpp"
@@ -15,8 +21,11 @@ double seconds_now() {
 
 class LoopbackTransport final : public Transport {
  public:
-  LoopbackTransport(std::unique_ptr<DeviceEngine> engine, std::string store)
-      : engine_(std::move(engine)), store_(std::move(store)) {}
+  LoopbackTransport(std::unique_ptr<DeviceEngine> engine, std::string store, int lock)
+      : engine_(std::move(engine)), store_(std::move(store)), lock_(lock) {}
+  ~LoopbackTransport() override { ::close(lock_); }
+  LoopbackTransport(const LoopbackTransport&) = delete;
+  LoopbackTransport& operator=(const LoopbackTransport&) = delete;
 
   Outcome write_all(std::span<const std::uint8_t> bytes, int) override {
     std::vector<Frame> replies;
@@ -49,6 +58,7 @@ class LoopbackTransport final : public Transport {
  private:
   std::unique_ptr<DeviceEngine> engine_;
   std::string store_;
+  int lock_;  // holds the store's lock while the machine is open
   SlipDecoder decoder_;
   Bytes pending_;
 };
@@ -57,13 +67,35 @@ class LoopbackTransport final : public Transport {
 
 Result<std::unique_ptr<Transport>> open_loopback(const std::string& store,
                                                  const JobCheckers& checkers) {
+  // One machine serves one host at a time: a second process sending to the
+  // same store waits until the first has closed it, as a job waits at a busy
+  // machine. Without it both would spool into the same job files.
+  std::error_code ec;
+  std::filesystem::create_directories(store, ec);
+  const std::string lock_path = (std::filesystem::path(store) / ".lock").string();
+  const int lock = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (lock < 0) {
+    return Error{ErrorClass::OsFailure, "cannot open the machine's lock " + lock_path, errno};
+  }
+  int locked;
+  do {
+    locked = ::flock(lock, LOCK_EX);
+  } while (locked != 0 && errno == EINTR);
+  if (locked != 0) {
+    const int error = errno;
+    ::close(lock);
+    return Error{ErrorClass::OsFailure, "cannot lock the machine " + lock_path, error};
+  }
   DeviceConfig config;
   config.store = store;
   config.checkers = checkers;
   auto engine = DeviceEngine::open(std::move(config));
-  if (!engine) return engine.error();
+  if (!engine) {
+    ::close(lock);
+    return engine.error();
+  }
   return std::unique_ptr<Transport>(
-      std::make_unique<LoopbackTransport>(std::move(engine.value()), store));
+      std::make_unique<LoopbackTransport>(std::move(engine.value()), store, lock));
 }
 
 }  // namespace devices

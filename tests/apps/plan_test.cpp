@@ -87,7 +87,8 @@ class PlanTest : public ::testing::Test {
   }
   static const test::CommandResult& plan_b() {
     if (plan_b_ == nullptr)
-      plan_b_ = new test::CommandResult(run_wearknit(plan_command("b", "-q --send loopback:")));
+      plan_b_ = new test::CommandResult(
+          run_wearknit(plan_command("b", "-q --send loopback:" + (*dir_ / "loopback").string())));
     return *plan_b_;
   }
   static fs::path* dir_;

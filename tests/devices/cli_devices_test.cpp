@@ -111,6 +111,29 @@ TEST_F(CliDevicesTest, LoopbackSendThenStatusShowsTheJobDone) {
             "wearknit status: " + uri + ": no unfinished job to pause (the device is done)\n");
 }
 
+TEST_F(CliDevicesTest, TwoSendersToOneLoopbackMachineTakeTurns) {
+  // Two processes send to the same loopback store at once. The machine
+  // serves one at a time, so neither job is spooled into the other's files.
+  wearknit::test::write_file(dir_ / "a.k", test::sheet_knitout(60, 400));
+  wearknit::test::write_file(dir_ / "b.k", test::sheet_knitout(50, 500));
+  const std::string uri = "loopback:" + (dir_ / "lb2").string();
+  std::string command;
+  for (const char* name : {"a", "b"}) {
+    command += std::string("('") + WEARKNIT_BINARY + "' send -q " + path(std::string(name) + ".k") +
+               " --to " + uri + " 2>" + path(std::string(name) + ".err") + "; echo $? >" +
+               path(std::string(name) + ".rc") + ") & ";
+  }
+  command += "wait";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  for (const char* name : {"a", "b"}) {
+    const std::string file = std::string(name) + ".k";
+    EXPECT_EQ(test::read_text(dir_ / (std::string(name) + ".rc")), "0\n")
+        << test::read_text(dir_ / (std::string(name) + ".err"));
+    EXPECT_TRUE(test::read_text(dir_ / "lb2" / file) == test::read_text(dir_ / file))
+        << file << " is not stored as it was sent";
+  }
+}
+
 TEST_F(CliDevicesTest, AnInvalidJobIsRefusedByTheDeviceWithTheReason) {
   // Syntax: the parser's K code.
   wearknit::test::write_file(dir_ / "bad.k", ";!knitout-2\n;;Carriers: 1 2 3\nknot + f1 3\n");
