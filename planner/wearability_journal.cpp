@@ -1,6 +1,5 @@
 #include "planner/wearability_journal.hpp"
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
