@@ -57,11 +57,13 @@ def wale_sides(path):
     """(length, part across the row, on the boundary) of every wale side of
     every stitch, lengths in wale lengths."""
     vertices, faces, types, library, wale_mm = read_smobj(path)
+    def side_key(face, i):
+        return frozenset((face[i], face[(i + 1) % len(face)]))
+
     uses = {}
     for face in faces:
-        for i, a in enumerate(face):
-            key = frozenset((a, face[(i + 1) % len(face)]))
-            uses[key] = uses.get(key, 0) + 1
+        for i in range(len(face)):
+            uses[side_key(face, i)] = uses.get(side_key(face, i), 0) + 1
     sides = []
     for face, t in zip(faces, types):
         roles = library[t]
@@ -78,10 +80,11 @@ def wale_sides(path):
                     break
             length = norm(w)
             across = length
-            if course is not None and norm(course) > 0:
-                along = abs(sum(w[x] * course[x] for x in range(3))) / norm(course)
+            course_length = norm(course) if course is not None else 0.0
+            if course_length > 0:
+                along = abs(sum(w[x] * course[x] for x in range(3))) / course_length
                 across = math.sqrt(max(0.0, length * length - along * along))
-            boundary = uses[frozenset((face[i], face[(i + 1) % k]))] == 1
+            boundary = uses[side_key(face, i)] == 1
             sides.append((length / wale_mm, across / wale_mm, boundary))
     return sides
 
@@ -94,7 +97,10 @@ def row(name, directory):
     leaning = [side for side in long_sides if side[1] <= 1.15]
     on_boundary = sum(1 for side in leaning if side[2])
     short = sum(1 for length, _, _ in sides if length < 0.85) / n
-    percent = lambda part, whole: 100 * part / max(1, whole)  # noqa: E731
+
+    def percent(part, whole):
+        return 100 * part / max(1, whole)
+
     return (
         f"| {name} | {n} | {statistics.mean(side[0] for side in sides):.3f} "
         f"| {100 * within:.1f}% | {statistics.mean(side[1] for side in sides):.3f} "
