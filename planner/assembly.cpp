@@ -193,8 +193,9 @@ void load(Model& m, const fs::path& dir) {
 
   // The pieces laid flat: as the scheduler wrote them
   // (pieces/piece-N.layout.json), else from the schedule rebuilt from the
-  // seed and number of trials it recorded (its result depends on nothing
-  // else, docs/scheduling.md §7.3) and checked against what it wrote.
+  // seed, number of trials and options it recorded (its result depends on
+  // nothing else, docs/scheduling.md §7.3) and checked against what it
+  // wrote.
   if (!report.contains("schedule") || !report["schedule"].is_object())
     fail(report_path, "A004", "no \"schedule\" member: run wearknit schedule first");
   const json& sched = report["schedule"];
@@ -202,6 +203,11 @@ void load(Model& m, const fs::path& dir) {
   try {
     params.seed = sched.at("seed").get<std::uint64_t>();
     params.trials = sched.at("trials").get<int>();
+    // The options that change the schedule; a report written before
+    // held loops could be set aside has no "max_aside".
+    params.max_patch_shift = sched.value("max_shift", params.max_patch_shift);
+    params.improve = sched.value("improve", params.improve);
+    params.max_aside = sched.value("max_aside", 0);
     if (!sched.at("pieces").is_array()) throw std::runtime_error("\"pieces\" is not a list");
   } catch (const std::exception& e) {
     fail(report_path, "A002", std::string("unexpected \"schedule\" content: ") + e.what());

@@ -44,9 +44,33 @@ class Emitter {
         }
       }
     }
+    // Held loops set aside (§7.3): each move is made before the first row of
+    // this piece knit no earlier than the row it was planned before (which
+    // may be in another piece: the loops are where the simulation had them).
+    std::vector<int> seq(s_.rows.size(), 0);
+    {
+      int k = 0;
+      for (int pt : s_.patch_order) {
+        for (int r : s_.patches[static_cast<std::size_t>(pt)].rows)
+          seq[static_cast<std::size_t>(r)] = k++;
+      }
+    }
+    std::vector<std::vector<AsideMove>> aside(piece.rows.size());
+    for (const AsideMove& m : s_.aside_moves) {
+      const auto at = std::find_if(piece.rows.begin(), piece.rows.end(), [&](int r) {
+        return seq[static_cast<std::size_t>(r)] >= seq[static_cast<std::size_t>(m.row)];
+      });
+      if (at == piece.rows.end()) continue;
+      const auto k = static_cast<std::size_t>(at - piece.rows.begin());
+      aside[k].push_back(m);
+      auto& rows = uses_[m.to + shift_];
+      rows.insert(std::upper_bound(rows.begin(), rows.end(), static_cast<int>(k)),
+                  static_cast<int>(k));
+    }
     int row_index = 0;
     for (int r : piece.rows) {
       row_index_ = row_index;
+      set_aside(aside[static_cast<std::size_t>(row_index)]);
       knit_row(r, row_index++);
     }
     if (in_) {
@@ -230,13 +254,15 @@ class Emitter {
   // within the racking limit that are empty on both beds, the one whose next
   // use comes latest (never, best), nearest first, `prefer` side first on
   // ties; `from` itself when none is better.
-  int parking_needle(int from, int after, int prefer) {
+  int parking_needle(int from, int after, int prefer, const std::set<int>* avoid = nullptr) {
     int best = from;
     int best_use = next_use(from, after);
+    if (avoid != nullptr && avoid->count(from) != 0) best_use = std::numeric_limits<int>::min();
     for (int d = 1; d <= 8; ++d) {
       for (int n : {from + prefer * d, from - prefer * d}) {
         if (n < params_.first_needle || n > params_.machine_needles) continue;
         if (!front_[n].empty() || !back_[n].empty()) continue;
+        if (avoid != nullptr && avoid->count(n) != 0) continue;
         const int use = next_use(n, after);
         if (use > best_use) {
           best = n;
@@ -344,6 +370,69 @@ class Emitter {
     end_pass();
     line("releasehook " + params_.carrier);
     hook_pending_ = false;
+  }
+
+  // ---- held loops set aside (§7.3, Schedule::aside_moves) ----
+  // The loops still on this piece's bed move to their needles with one
+  // schoolbus plan. A bind-off tail waiting on one of those needles moves
+  // to an empty needle first, or stays to be carried on with the loop when
+  // the stack has room; only when neither is possible is it dropped.
+  void set_aside(const std::vector<AsideMove>& batch) {
+    // Several moves of one loop (planned before rows of other pieces) make
+    // one: to where the last one puts it.
+    std::map<int, int> last;
+    for (const AsideMove& m : batch) last[m.edge] = m.to + shift_;
+    std::vector<LoopMove> moves;
+    std::vector<int> edges;
+    std::set<int> to;
+    for (const auto& [edge, needle] : last) {
+      const auto it = where_.find(edge);
+      if (it == where_.end() || it->second == needle) continue;
+      moves.push_back({it->second, needle});
+      edges.push_back(edge);
+      to.insert(needle);
+    }
+    if (moves.empty()) return;
+    std::set<int> from;
+    for (const LoopMove& m : moves) from.insert(m.from);
+    for (const LoopMove& m : moves) {
+      auto& loops = front_[m.to];
+      if (loops.empty() || from.count(m.to) != 0) continue;
+      if (std::any_of(loops.begin(), loops.end(), [](int t) { return t != kTail; }))
+        throw std::logic_error("f" + std::to_string(m.to) +
+                               " holds a live loop where a held loop is set aside");
+      const int park = parking_needle(m.to, row_index_ - 1, m.to >= m.from ? +1 : -1, &to);
+      if (park != m.to) {
+        move_loop(m.to, park);
+      } else if (loops.size() + front_[m.from].size() > kMaxLoops) {
+        touch(PassKey{'d', 0, racking_}, m.to);
+        line("drop f" + std::to_string(m.to));
+        loops.clear();
+      }
+    }
+    const std::vector<Transfer> plan = schoolbus(
+        moves,
+        [&](int n) {
+          const auto it = front_.find(n);
+          return it != front_.end() && !it->second.empty() && from.count(n) == 0;
+        },
+        8);
+    end_pass();
+    for (const Transfer& tr : plan) {
+      rack(tr.racking);
+      if (tr.to_back) {
+        xfer('f', tr.front, 'b', tr.back);
+      } else {
+        xfer('b', tr.back, 'f', tr.front);
+      }
+    }
+    rack(0);
+    end_pass();
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      where_[edges[i]] = moves[i].to;
+      // A tail that stayed joins the loop, as it joins a holder.
+      relabel(moves[i].to, edges[i]);
+    }
   }
 
   // ---- one row: transfers in, cast-on, two passes, bind-off (§7.4-7.5) ----
@@ -773,6 +862,14 @@ EmittedPiece emit_piece(const StitchMesh& mesh, const Schedule& s, std::size_t p
         hi = std::max(hi, s.edges[static_cast<std::size_t>(e)].needle);
       }
     }
+  }
+  for (const AsideMove& m : s.aside_moves) {
+    const CourseEdge& e = s.edges[static_cast<std::size_t>(m.edge)];
+    if (e.cut || std::find(p.rows.begin(), p.rows.end(),
+                           s.face_row[static_cast<std::size_t>(e.lower)]) == p.rows.end())
+      continue;
+    lo = std::min(lo, m.to);
+    hi = std::max(hi, m.to);
   }
   if (hi - lo + 1 > params.machine_needles)
     throw ScheduleError("piece " + std::to_string(piece + 1) + " is " +

@@ -539,10 +539,12 @@ std::vector<int> random_patch_order(const Schedule& s, std::uint64_t seed, std::
 }
 
 std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::vector<int>& order,
-                                                int max_shift, std::vector<int>* patch_shift) {
+                                                int max_shift, std::vector<int>* patch_shift,
+                                                int max_aside, std::vector<AsideMove>* asides) {
   // §7.3: knit the rows patch by patch on a needle bed that keeps every loop
   // whose consumer is not knit yet. A row that needs a needle holding a loop
   // meant for another row overlaps it: cut the rows that loop joins.
+  if (asides != nullptr) asides->clear();
   if (s.edges.empty()) return {};
   int lo = 1 << 30, hi = -(1 << 30);
   for (const CourseEdge& e : s.edges) {
@@ -550,23 +552,31 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
     hi = std::max(hi, e.needle);
   }
   max_shift = std::max(0, max_shift);
-  lo -= max_shift;
-  hi += max_shift;
+  max_aside = std::max(0, max_aside);
+  lo -= max_shift + max_aside;
+  hi += max_shift + max_aside;
   std::vector<int> shift(s.patches.size(), 0);
+  // Needles each held loop was moved aside since it was made.
+  std::vector<int> aside(s.edges.size(), 0);
   std::vector<std::vector<int>> held(static_cast<std::size_t>(hi - lo + 1));
   std::vector<std::pair<int, int>> cuts;
   auto row_of = [&](int f) { return s.face_row[static_cast<std::size_t>(f)]; };
   auto is_cut = [&](int a, int b) {
     return std::find(cuts.begin(), cuts.end(), std::make_pair(a, b)) != cuts.end();
   };
-  // Where edge e's loop sits: its needle, moved with the patch that makes it
-  // (or, cast on, with the patch that knits it).
+  // Where edge e's loop is made: its needle, moved with the patch that makes
+  // it (or, cast on, with the patch that knits it).
   auto owner = [&](const CourseEdge& ce) {
     return s.rows[static_cast<std::size_t>(row_of(ce.lower != kNone ? ce.lower : ce.upper))].patch;
   };
   auto needle_of = [&](int e) {
     const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
     return ce.needle + shift[static_cast<std::size_t>(owner(ce))];
+  };
+  // Where a made loop is now.
+  auto held_at = [&](int e) { return needle_of(e) + aside[static_cast<std::size_t>(e)]; };
+  auto bucket_at = [&](int n) -> std::vector<int>& {
+    return held[static_cast<std::size_t>(n - lo)];
   };
   // The needles row r needs: its top needles and those its loops come from.
   auto span = [&](int r, int& rlo, int& rhi) {
@@ -581,8 +591,8 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
       for (int e : fl.in) {
         const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
         if (ce.lower == kNone || is_cut(row_of(ce.lower), r)) continue;
-        rlo = std::min(rlo, needle_of(e));
-        rhi = std::max(rhi, needle_of(e));
+        rlo = std::min(rlo, held_at(e));
+        rhi = std::max(rhi, held_at(e));
       }
     }
   };
@@ -593,15 +603,19 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
       place[static_cast<std::size_t>(patch.rows[i])] = static_cast<int>(i);
   }
   // The row pairs whose loops, held now, the rows of patch p would cover
-  // (a loop for a row of p that is knit by then is not in the way).
+  // (a loop for a row of p that is knit by then is not in the way), and the
+  // needles p's rows need (`in_patch`, from `lo`).
   std::vector<std::pair<int, int>> covered;
+  std::vector<char> in_patch(held.size(), 0);
   auto count_covered = [&](int p) {
     covered.clear();
+    std::fill(in_patch.begin(), in_patch.end(), 0);
     for (int r : s.patches[static_cast<std::size_t>(p)].rows) {
       int rlo = 0, rhi = 0;
       span(r, rlo, rhi);
       for (int n = rlo; n <= rhi; ++n) {
-        for (int e : held[static_cast<std::size_t>(n - lo)]) {
+        in_patch[static_cast<std::size_t>(n - lo)] = 1;
+        for (int e : bucket_at(n)) {
           const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
           const int b = row_of(ce.upper);
           if (s.rows[static_cast<std::size_t>(b)].patch == p &&
@@ -612,43 +626,124 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
       }
     }
     std::sort(covered.begin(), covered.end());
-    return static_cast<int>(std::unique(covered.begin(), covered.end()) - covered.begin());
+    covered.erase(std::unique(covered.begin(), covered.end()), covered.end());
+    return static_cast<int>(covered.size());
+  };
+  // The held loops that join rows a and b.
+  auto held_between = [&](int a, int b) {
+    std::vector<int> edges;
+    for (int f : s.rows[static_cast<std::size_t>(a)].faces) {
+      for (int e : s.faces[static_cast<std::size_t>(f)].out) {
+        const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
+        if (ce.upper == kNone || row_of(ce.upper) != b) continue;
+        const auto& bucket = bucket_at(held_at(e));
+        if (std::find(bucket.begin(), bucket.end(), e) != bucket.end()) edges.push_back(e);
+      }
+    }
+    return edges;
+  };
+  // The move (in needles) that takes every loop of `edges` off the needles
+  // of the patch counted last (`in_patch`) onto needles that hold no other
+  // loop, at most max_aside from where each was made; the fewest needles,
+  // away from the patch's middle first. 0 when none does.
+  auto aside_move = [&](const std::vector<int>& edges, int middle) {
+    if (edges.empty()) return 0;
+    const int away = held_at(edges.front()) >= middle ? 1 : -1;
+    for (int k = 1; k <= 2 * max_aside; ++k) {
+      const int d = (k % 2 == 1 ? away : -away) * ((k + 1) / 2);
+      bool fits = true;
+      for (int e : edges) {
+        const int n = held_at(e) + d;
+        if (std::abs(aside[static_cast<std::size_t>(e)] + d) > max_aside ||
+            in_patch[static_cast<std::size_t>(n - lo)] != 0 ||
+            !std::all_of(bucket_at(n).begin(), bucket_at(n).end(), [&](int other) {
+              return std::find(edges.begin(), edges.end(), other) != edges.end();
+            })) {
+          fits = false;
+          break;
+        }
+      }
+      if (fits) return d;
+    }
+    return 0;
+  };
+  // The middle of the needles patch p needs (after count_covered).
+  auto patch_middle = [&] {
+    int first = -1, last = -1;
+    for (std::size_t i = 0; i < in_patch.size(); ++i) {
+      if (in_patch[i] == 0) continue;
+      if (first < 0) first = static_cast<int>(i);
+      last = static_cast<int>(i);
+    }
+    return lo + (first + last) / 2;
+  };
+  // Row pairs patch p would cover that no move aside clears (after
+  // count_covered).
+  auto left_covered = [&] {
+    if (max_aside == 0) return static_cast<int>(covered.size());
+    const int middle = patch_middle();
+    int left = 0;
+    for (const auto& [a, b] : covered) {
+      if (aside_move(held_between(a, b), middle) == 0) ++left;
+    }
+    return left;
   };
   for (int p : order) {
     // A patch that would cover loops held for other rows is moved sideways
     // as a whole (Fig. 9c, but by one transfer at the patch's start rather
     // than one needle per row): by the fewest needles, within
-    // ±max_shift, that leaves the fewest row pairs to cut.
+    // ±max_shift, that leaves the fewest row pairs to cut once the loops
+    // that can be are moved aside.
     const auto& rows = s.patches[static_cast<std::size_t>(p)].rows;
     int best = 0, best_count = count_covered(p);
+    int best_left = best_count > 0 ? left_covered() : 0;
     for (int d = 1; d <= 2 * max_shift && best_count > 0; ++d) {
       shift[static_cast<std::size_t>(p)] = d % 2 == 1 ? (d + 1) / 2 : -(d / 2);
       const int c = count_covered(p);
-      if (c < best_count) {
+      const int left = c > 0 ? left_covered() : 0;
+      if (left < best_left || (left == best_left && c < best_count)) {
         best = shift[static_cast<std::size_t>(p)];
         best_count = c;
+        best_left = left;
       }
     }
     shift[static_cast<std::size_t>(p)] = best;
+    // Then the held loops it would cover are moved out of its way, one row
+    // pair at a time, where that clears them.
+    if (best_count > 0 && max_aside > 0) {
+      count_covered(p);
+      const int middle = patch_middle();
+      const std::vector<std::pair<int, int>> pairs = covered;
+      for (const auto& [a, b] : pairs) {
+        const std::vector<int> edges = held_between(a, b);
+        const int d = aside_move(edges, middle);
+        if (d == 0) continue;
+        for (int e : edges) {
+          auto& from = bucket_at(held_at(e));
+          from.erase(std::remove(from.begin(), from.end(), e), from.end());
+        }
+        for (int e : edges) {
+          aside[static_cast<std::size_t>(e)] += d;
+          bucket_at(held_at(e)).push_back(e);
+          if (asides != nullptr) asides->push_back({rows.front(), e, held_at(e)});
+        }
+      }
+    }
     for (int r : rows) {
       const Row& row = s.rows[static_cast<std::size_t>(r)];
       int rlo = 0, rhi = 0;
       span(r, rlo, rhi);
       for (int n = rlo; n <= rhi; ++n) {
-        auto& bucket = held[static_cast<std::size_t>(n - lo)];
+        auto& bucket = bucket_at(n);
         for (std::size_t k = 0; k < bucket.size(); ++k) {
           const CourseEdge& ce = s.edges[static_cast<std::size_t>(bucket[k])];
           const int a = row_of(ce.lower), b = row_of(ce.upper);
           if (b == r) continue;
           cuts.emplace_back(a, b);
           // Every loop joining the two rows is bound off: none stays held.
-          for (int f : s.rows[static_cast<std::size_t>(a)].faces) {
-            for (int e : s.faces[static_cast<std::size_t>(f)].out) {
-              const CourseEdge& c2 = s.edges[static_cast<std::size_t>(e)];
-              if (c2.upper == kNone || row_of(c2.upper) != b) continue;
-              auto& other = held[static_cast<std::size_t>(needle_of(e) - lo)];
-              other.erase(std::remove(other.begin(), other.end(), e), other.end());
-            }
+          for (int e : held_between(a, b)) {
+            auto& other = bucket_at(held_at(e));
+            other.erase(std::remove(other.begin(), other.end(), e), other.end());
           }
           k = static_cast<std::size_t>(-1);  // the bucket changed: look again
         }
@@ -658,13 +753,13 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
         for (int e : fl.in) {
           const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
           if (ce.lower == kNone) continue;
-          auto& bucket = held[static_cast<std::size_t>(needle_of(e) - lo)];
+          auto& bucket = bucket_at(held_at(e));
           bucket.erase(std::remove(bucket.begin(), bucket.end(), e), bucket.end());
         }
         for (int e : fl.out) {
           const CourseEdge& ce = s.edges[static_cast<std::size_t>(e)];
           if (ce.upper == kNone) continue;
-          held[static_cast<std::size_t>(needle_of(e) - lo)].push_back(e);
+          bucket_at(held_at(e)).push_back(e);
         }
       }
     }
@@ -673,7 +768,8 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
   return cuts;
 }
 
-int improve_order(const Schedule& s, std::vector<int>& order, int max_shift, int max_moves) {
+int improve_order(const Schedule& s, std::vector<int>& order, int max_shift, int max_moves,
+                  int max_aside) {
   const std::vector<std::vector<int>> succ = patch_successors(s);
   std::vector<std::vector<int>> pred(succ.size());
   for (std::size_t a = 0; a < succ.size(); ++a) {
@@ -701,7 +797,7 @@ int improve_order(const Schedule& s, std::vector<int>& order, int max_shift, int
     out.insert(out.begin() + static_cast<std::ptrdiff_t>(at), p);
     return out;
   };
-  std::vector<std::pair<int, int>> cuts = simulate_order(s, order, max_shift);
+  std::vector<std::pair<int, int>> cuts = simulate_order(s, order, max_shift, nullptr, max_aside);
   int moves = 0;
   // Moves patch `p`; keeps the order when it leaves fewer cuts.
   const auto improves = [&](int p, bool earliest) {
@@ -709,7 +805,8 @@ int improve_order(const Schedule& s, std::vector<int>& order, int max_shift, int
     std::vector<int> candidate = moved(order, p, earliest);
     if (candidate == order) return false;
     ++moves;
-    std::vector<std::pair<int, int>> fewer = simulate_order(s, candidate, max_shift);
+    std::vector<std::pair<int, int>> fewer =
+        simulate_order(s, candidate, max_shift, nullptr, max_aside);
     if (fewer.size() >= cuts.size()) return false;
     order = std::move(candidate);
     cuts = std::move(fewer);
@@ -757,8 +854,16 @@ void choose_order(Schedule& s, const ScheduleParams& params) {
       const std::uint64_t t = next.fetch_add(1);
       if (t >= limit) break;
       const auto order = random_patch_order(s, params.seed, t);
-      mine.push_back(
-          {t, static_cast<int>(simulate_order(s, order, params.max_patch_shift).size())});
+      const auto cuts = [&](int max_aside) {
+        return static_cast<int>(
+            simulate_order(s, order, params.max_patch_shift, nullptr, max_aside).size());
+      };
+      TrialResult result;
+      result.trial = t;
+      result.cuts_in_place = cuts(0);
+      result.cuts_aside = params.max_aside > 0 ? cuts(params.max_aside) : result.cuts_in_place;
+      result.cuts = std::min(result.cuts_in_place, result.cuts_aside);
+      mine.push_back(result);
     }
     std::lock_guard<std::mutex> lock(mutex);
     results.insert(results.end(), mine.begin(), mine.end());
@@ -774,38 +879,57 @@ void choose_order(Schedule& s, const ScheduleParams& params) {
       std::min_element(results.begin(), results.end(),
                        [](const TrialResult& a, const TrialResult& b) { return a.cuts < b.cuts; });
   s.best_trial = best->trial;
+  bool aside = best->cuts_aside < best->cuts_in_place;
   s.patch_order = random_patch_order(s, params.seed, best->trial);
   s.random_cuts = best->cuts;
   // Local search (improve_order) from the best random orders, in parallel;
-  // the result depends only on the ranking, not on the threads.
-  std::vector<TrialResult> ranked = results;
-  std::stable_sort(ranked.begin(), ranked.end(),
-                   [](const TrialResult& a, const TrialResult& b) { return a.cuts < b.cuts; });
-  ranked.resize(std::min(ranked.size(), static_cast<std::size_t>(std::max(0, params.improve))));
-  std::vector<std::vector<int>> improved(ranked.size());
-  std::vector<int> improved_cuts(ranked.size(), 0);
+  // the result depends only on the ranking, not on the threads. The
+  // params.improve best orders with held loops in place are refined so,
+  // then (when loops may be set aside) the params.improve best with them
+  // set aside; the first job of the fewest cuts wins, so where setting
+  // aside does not help the schedule is the one without it.
+  const std::size_t keep = static_cast<std::size_t>(std::max(0, params.improve));
+  struct Job {
+    std::uint64_t trial = 0;
+    bool aside = false;
+  };
+  std::vector<Job> jobs;
+  for (const bool set_aside : {false, true}) {
+    if (set_aside && params.max_aside == 0) continue;
+    std::vector<TrialResult> ranked = results;
+    std::stable_sort(ranked.begin(), ranked.end(), [&](const TrialResult& a, const TrialResult& b) {
+      return set_aside ? a.cuts_aside < b.cuts_aside : a.cuts_in_place < b.cuts_in_place;
+    });
+    for (std::size_t i = 0; i < std::min(keep, ranked.size()); ++i)
+      jobs.push_back({ranked[i].trial, set_aside});
+  }
+  std::vector<std::vector<int>> improved(jobs.size());
+  std::vector<int> improved_cuts(jobs.size(), 0);
   std::atomic<std::size_t> next_order{0};
   auto refine = [&] {
-    for (std::size_t i = next_order.fetch_add(1); i < ranked.size(); i = next_order.fetch_add(1)) {
-      improved[i] = random_patch_order(s, params.seed, ranked[i].trial);
-      improved_cuts[i] =
-          improve_order(s, improved[i], params.max_patch_shift, params.improve_moves);
+    for (std::size_t j = next_order.fetch_add(1); j < jobs.size(); j = next_order.fetch_add(1)) {
+      improved[j] = random_patch_order(s, params.seed, jobs[j].trial);
+      improved_cuts[j] = improve_order(s, improved[j], params.max_patch_shift, params.improve_moves,
+                                       jobs[j].aside ? params.max_aside : 0);
     }
   };
   pool.clear();
-  for (unsigned i = 1; i < threads && i < ranked.size(); ++i) pool.emplace_back(refine);
+  for (unsigned i = 1; i < threads && i < jobs.size(); ++i) pool.emplace_back(refine);
   refine();
   for (auto& th : pool) th.join();
-  // The fewest cuts (ties: the better-ranked start). The first start is the
-  // best random order itself, which the search never makes worse.
-  if (!ranked.empty()) {
-    const auto i = static_cast<std::size_t>(
+  // The fewest cuts (ties: the earlier job). The first start of each kind
+  // is the best random order of that kind, which the search never makes
+  // worse.
+  if (!jobs.empty()) {
+    const auto j = static_cast<std::size_t>(
         std::min_element(improved_cuts.begin(), improved_cuts.end()) - improved_cuts.begin());
-    s.patch_order = std::move(improved[i]);
-    s.best_trial = ranked[i].trial;
+    s.patch_order = std::move(improved[j]);
+    s.best_trial = jobs[j].trial;
+    aside = jobs[j].aside;
   }
   std::vector<int> shift;
-  s.cut_rows = simulate_order(s, s.patch_order, params.max_patch_shift, &shift);
+  s.cut_rows = simulate_order(s, s.patch_order, params.max_patch_shift, &shift,
+                              aside ? params.max_aside : 0, &s.aside_moves);
   s.cuts = static_cast<int>(s.cut_rows.size());
   s.patch_shift = shift;
   // The kept order's patch shifts become the needles the emitter uses.

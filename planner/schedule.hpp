@@ -41,6 +41,12 @@ inline constexpr int kNone = -1;
 // compares 4 and 8 over the shared meshes).
 inline constexpr int kMaxPatchShift = 8;
 
+// §7.3 (docs/scheduling.md, "Held loops set aside"): the furthest (in
+// needles, in all) the order simulation moves loops held for a later row
+// out of the way of a patch that would cover them; again one round of the
+// schoolbus.
+inline constexpr int kMaxAside = 8;
+
 // One loop-carrying course edge of the stitch mesh: made by `lower` (its
 // CourseOut side), knit through by `upper` (its CourseIn side). kNone on a
 // side means the edge is on the mesh boundary there: cast on below, bound off
@@ -65,13 +71,26 @@ struct Row {
   bool cycle_broken = false;  // the row closed on itself and was opened (a cut)
 };
 
+// Before `row` (the first row of a patch) is knit, the loop of course edge
+// `edge`, held for a later row, moves to front needle `to` (global, patch
+// shifts included): the patch would otherwise cover it (§7.3).
+struct AsideMove {
+  int row = 0;
+  int edge = 0;
+  int to = 0;
+};
+
 struct Patch {
   std::vector<int> rows;  // bottom to top: the order they are knit in
 };
 
+// Each order is simulated with held loops kept where they were made and
+// with them set aside (§7.3, docs/scheduling.md); `cuts` is the fewer.
 struct TrialResult {
   std::uint64_t trial = 0;
   int cuts = 0;
+  int cuts_in_place = 0;
+  int cuts_aside = 0;  // = cuts_in_place when loops may not be set aside
 };
 
 struct ScheduleParams {
@@ -80,6 +99,7 @@ struct ScheduleParams {
   std::uint64_t seed = 1;                // every random choice derives from it and the trial number
   int threads = 0;                       // 0: all cores
   int max_patch_shift = kMaxPatchShift;  // 0: patches stay where §7.2 put them
+  int max_aside = kMaxAside;             // 0: held loops stay where they were made
   // The best random orders refined by improve_order (0: §7.3's random
   // orders only), and the orders simulated per refinement, at most.
   int improve = 8;
@@ -107,12 +127,13 @@ struct Schedule {
   // lowest row number first).
   std::vector<int> row_topo_index;
   std::vector<Patch> patches;
-  std::vector<int> patch_order;     // §7.3: the order kept
-  std::vector<int> patch_shift;     // §7.3: needles each patch was moved (already in the edges)
-  std::vector<TrialResult> trials;  // every order tried, in trial order
-  std::uint64_t best_trial = 0;     // the random order kept, or refined into the kept one
-  int random_cuts = 0;              // cuts of the best random order, before improve_order
-  int cuts = 0;                     // cuts of the kept order (row pairs separated)
+  std::vector<int> patch_order;        // §7.3: the order kept
+  std::vector<int> patch_shift;        // §7.3: needles each patch was moved (already in the edges)
+  std::vector<AsideMove> aside_moves;  // §7.3: held loops moved out of the way, in knitting order
+  std::vector<TrialResult> trials;     // every order tried, in trial order
+  std::uint64_t best_trial = 0;        // the random order kept, or refined into the kept one
+  int random_cuts = 0;                 // cuts of the best random order, before improve_order
+  int cuts = 0;                        // cuts of the kept order (row pairs separated)
   std::vector<std::pair<int, int>> cut_rows;  // (lower row, upper row) per cut
   std::vector<Piece> pieces;
 };
@@ -132,13 +153,18 @@ void assign_needles(const StitchMesh& mesh, Schedule& schedule);
 // §7.3: simulate one order; returns the row pairs that must be cut. `order`
 // is a topological order of the patches. A patch about to be knit over
 // loops held for other rows is first moved sideways by the fewest needles
-// (within ±max_shift) that leaves the fewest row pairs to cut; the shift
-// per patch is stored in `patch_shift` when given (edges' needles are not
+// (within ±max_shift) that leaves the fewest row pairs to cut, and the held
+// loops it would still cover are moved out of its way where that clears
+// them (each row pair's loops together, at most max_aside needles from
+// where they were made); the shift per patch is stored in `patch_shift` and
+// the moves of held loops in `asides` when given (edges' needles are not
 // changed).
 std::vector<std::pair<int, int>> simulate_order(const Schedule& schedule,
                                                 const std::vector<int>& order,
                                                 int max_shift = kMaxPatchShift,
-                                                std::vector<int>* patch_shift = nullptr);
+                                                std::vector<int>* patch_shift = nullptr,
+                                                int max_aside = kMaxAside,
+                                                std::vector<AsideMove>* asides = nullptr);
 
 // §7.3: a random topological order of the patches for `trial`.
 std::vector<int> random_patch_order(const Schedule& schedule, std::uint64_t seed,
@@ -150,7 +176,8 @@ std::vector<int> random_patch_order(const Schedule& schedule, std::uint64_t seed
 // move that leaves fewer cuts is kept, and the search starts again, until no
 // move helps or `max_moves` orders have been simulated. Deterministic.
 // Returns the cuts of the order left in `order`.
-int improve_order(const Schedule& schedule, std::vector<int>& order, int max_shift, int max_moves);
+int improve_order(const Schedule& schedule, std::vector<int>& order, int max_shift, int max_moves,
+                  int max_aside = kMaxAside);
 
 // §7.3: tries orders (in parallel; the result depends only on params.seed and
 // the number of trials, not on the threads), refines the params.improve best

@@ -80,6 +80,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   std::uint64_t seed = 1;
   int threads = 0;
   int max_shift = planner::kMaxPatchShift;
+  int max_aside = planner::kMaxAside;
   int improve = planner::ScheduleParams{}.improve;
   std::string format_name;
   po::options_description options("options");
@@ -96,6 +97,8 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
       "threads for the trials (0: all cores); results depend only on the seed and trials")(
       "max-shift", po::value<int>(&max_shift)->default_value(planner::kMaxPatchShift),
       "needles a patch may be moved sideways to clear held loops (0 to 8)")(
+      "max-aside", po::value<int>(&max_aside)->default_value(planner::kMaxAside),
+      "needles loops held for a later row may be moved out of a patch's way (0 to 8)")(
       "improve", po::value<int>(&improve)->default_value(improve),
       "best random orders refined by a local search that moves the patches of each cut "
       "(0: random orders only, as in §7.3)")(
@@ -129,6 +132,10 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   }
   if (max_shift < 0 || max_shift > 8) {
     context.err << "wearknit schedule: --max-shift takes 0 to 8 (the racking limit)\n";
+    return kExitUsage;
+  }
+  if (max_aside < 0 || max_aside > 8) {
+    context.err << "wearknit schedule: --max-aside takes 0 to 8 (the racking limit)\n";
     return kExitUsage;
   }
   planner::EmitParams emit;
@@ -168,6 +175,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
   params.seed = seed;
   params.threads = threads;
   params.max_patch_shift = max_shift;
+  params.max_aside = max_aside;
   params.improve = improve;
   planner::Schedule schedule;
   std::vector<planner::EmittedPiece> pieces;
@@ -354,6 +362,8 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
       {"max_shift", max_shift},
       {"patches_moved", std::count_if(schedule.patch_shift.begin(), schedule.patch_shift.end(),
                                       [](int shift) { return shift != 0; })},
+      {"max_aside", max_aside},
+      {"loops_set_aside", schedule.aside_moves.size()},
       {"rows", schedule.rows.size()},
       {"patches", schedule.patches.size()},
       {"wale_seams", schedule.wale_seams.size()},

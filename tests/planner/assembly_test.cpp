@@ -217,7 +217,8 @@ TEST(AssemblyTest, GuideOfARealPlanFolderShowsEveryPieceAndSeam) {
   EXPECT_EQ(count(svg, "class=\"legend-lace\""), 1);
 
   // The scheduler wrote each piece's layout; without those files the guide
-  // rebuilds the schedule from report.json's seed and trials: same pages.
+  // rebuilds the schedule from report.json's seed, trials and options: same
+  // pages.
   for (std::size_t p = 1; p <= pieces; ++p) {
     const fs::path layout = dir / "pieces" / ("piece-" + std::to_string(p) + ".layout.json");
     ASSERT_TRUE(fs::exists(layout)) << layout;

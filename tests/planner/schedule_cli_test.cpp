@@ -68,7 +68,7 @@ TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
 }
 
 TEST(ScheduleCliTest, CrossingBranchesGetASewCutAndTwoPieces) {
-  const TempDir folder = plan_folder(fixtures::crossing_branches(12, 3, 22), "sched-x");
+  const TempDir folder = plan_folder(fixtures::crossing_branches(12, 3, 30), "sched-x");
   const fs::path& dir = folder.path();
   const auto result =
       wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 8 --pattern seed");
@@ -83,7 +83,7 @@ TEST(ScheduleCliTest, CrossingBranchesGetASewCutAndTwoPieces) {
 TEST(ScheduleCliTest, ARunWithFewerPiecesRemovesTheEarlierRunsExtraPieces) {
   // Two pieces, then a run that finds one piece: pieces/ must not keep the
   // second piece of the first run, which would be sent with the new one.
-  const TempDir folder = plan_folder(fixtures::crossing_branches(12, 3, 22), "sched-stale");
+  const TempDir folder = plan_folder(fixtures::crossing_branches(12, 3, 30), "sched-stale");
   const fs::path& dir = folder.path();
   ASSERT_EQ(wearknit::test::run_wearknit("schedule " + dir.string() + " -q").exit_code, 0);
   for (const char* file : {"piece-2.k", "piece-2.dat", "piece-2.svg", "piece-2.layout.json"})
@@ -186,12 +186,35 @@ TEST(ScheduleCliTest, MaxShiftIsReported) {
   EXPECT_EQ(report["schedule"]["max_shift"], kMaxPatchShift);
   EXPECT_EQ(report["schedule"]["patches_moved"], 1);
   EXPECT_EQ(report["schedule"]["cuts"], 0);
-  const auto fixed =
+  EXPECT_EQ(report["schedule"]["loops_set_aside"], 0);
+  // Patches kept in place: the three loops held for the branch knit second
+  // are set aside instead.
+  const auto aside =
       wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 8 --max-shift 0 -q");
+  ASSERT_EQ(aside.exit_code, 0) << aside.err;
+  report = json::parse(wearknit::test::read_file(dir / "report.json"));
+  EXPECT_EQ(report["schedule"]["patches_moved"], 0);
+  EXPECT_EQ(report["schedule"]["max_aside"], kMaxAside);
+  EXPECT_EQ(report["schedule"]["loops_set_aside"], 3);
+  EXPECT_EQ(report["schedule"]["cuts"], 0);
+  const auto fixed = wearknit::test::run_wearknit("schedule " + dir.string() +
+                                                  " --trials 8 --max-shift 0 --max-aside 0 -q");
   ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
   report = json::parse(wearknit::test::read_file(dir / "report.json"));
   EXPECT_EQ(report["schedule"]["patches_moved"], 0);
+  EXPECT_EQ(report["schedule"]["loops_set_aside"], 0);
   EXPECT_EQ(report["schedule"]["cuts"], 1);
+}
+
+TEST(ScheduleCliTest, MaxAsideBeyondTheRackingLimitIsAUsageError) {
+  const TempDir folder = plan_folder(fixtures::rectangle(3, 2), "sched-aside");
+  const fs::path& dir = folder.path();
+  for (const char* value : {"9", "-1"}) {
+    const auto result =
+        wearknit::test::run_wearknit("schedule " + dir.string() + " --max-aside " + value);
+    EXPECT_EQ(result.exit_code, 2) << value;
+    EXPECT_EQ(result.err, "wearknit schedule: --max-aside takes 0 to 8 (the racking limit)\n");
+  }
 }
 
 TEST(ScheduleCliTest, NegativeImproveIsAUsageError) {

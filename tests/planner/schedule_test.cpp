@@ -77,9 +77,10 @@ TEST(ScheduleTest, YShapeSplitsIntoThreePatchesAndNeedsNoCut) {
 }
 
 TEST(ScheduleTest, CrossingBranchesNeedOneCutWhateverTheOrder) {
-  // Each branch widens 22 needles over the other's base: further than a
-  // patch may be moved (kMaxPatchShift), so every order needs a cut.
-  const Schedule s = run(fx::crossing_branches(12, 3, 22), 30);
+  // Each branch widens 30 needles over the other's base: further than a
+  // patch may be moved (kMaxPatchShift) and the loops held for the other
+  // set aside (kMaxAside) together, so every order needs a cut.
+  const Schedule s = run(fx::crossing_branches(12, 3, 30), 30);
   ASSERT_EQ(s.patches.size(), 3u);
   ASSERT_EQ(s.trials.size(), 30u);
   for (const TrialResult& t : s.trials) EXPECT_GE(t.cuts, 1) << "trial " << t.trial;
@@ -89,6 +90,49 @@ TEST(ScheduleTest, CrossingBranchesNeedOneCutWhateverTheOrder) {
   EXPECT_EQ(s.rows[static_cast<std::size_t>(s.cut_rows[0].first)].patch, s.patch_order[0]);
   EXPECT_EQ(s.rows[static_cast<std::size_t>(s.cut_rows[0].second)].patch, s.patch_order[2]);
   EXPECT_EQ(s.pieces.size(), 2u);
+}
+
+TEST(ScheduleTest, BranchesCrossingBeyondTheShiftReachHaveTheHeldLoopsSetAside) {
+  // The crossing 22 rows high: the branch knit first widens 22 needles over
+  // the three loops held for the other. Moved by kMaxPatchShift it still
+  // covers them; with them moved kMaxAside the other way it does not, so no
+  // cut is needed (§7.3, docs/scheduling.md "Held loops set aside").
+  const StitchMesh mesh = fx::crossing_branches(12, 3, 22);
+  const Schedule s = run(mesh, 30);
+  ASSERT_EQ(s.patches.size(), 3u);
+  EXPECT_EQ(s.cuts, 0);
+  EXPECT_EQ(s.pieces.size(), 1u);
+  ASSERT_EQ(s.aside_moves.size(), 3u);
+  const auto patch_of = [&](int f) {
+    return s.rows[static_cast<std::size_t>(s.face_row[static_cast<std::size_t>(f)])].patch;
+  };
+  std::set<int> edges;
+  for (const AsideMove& m : s.aside_moves) {
+    const CourseEdge& e = s.edges[static_cast<std::size_t>(m.edge)];
+    edges.insert(m.edge);
+    // The base's loops for the branch knit second, moved before the first
+    // row of the branch knit first, at most kMaxAside from where they were
+    // made and off every needle that branch knits.
+    EXPECT_EQ(patch_of(e.lower), s.patch_order[0]);
+    EXPECT_EQ(patch_of(e.upper), s.patch_order[2]);
+    EXPECT_EQ(m.row, s.patches[static_cast<std::size_t>(s.patch_order[1])].rows.front());
+    EXPECT_NE(m.to, e.needle);
+    EXPECT_LE(std::abs(m.to - e.needle), kMaxAside);
+    for (int r : s.patches[static_cast<std::size_t>(s.patch_order[1])].rows) {
+      for (int f : s.rows[static_cast<std::size_t>(r)].faces) {
+        for (int out : s.faces[static_cast<std::size_t>(f)].out)
+          EXPECT_NE(s.edges[static_cast<std::size_t>(out)].needle, m.to);
+      }
+    }
+  }
+  EXPECT_EQ(edges.size(), 3u);
+  // Kept where they were made, the loops are covered: a cut.
+  ScheduleParams in_place;
+  in_place.trials = 30;
+  in_place.max_aside = 0;
+  const Schedule cut = schedule(mesh, in_place);
+  EXPECT_GE(cut.cuts, 1);
+  EXPECT_TRUE(cut.aside_moves.empty());
 }
 
 TEST(ScheduleTest, BranchesCrossingWithinTheShiftReachAreMovedApartNotCut) {
@@ -118,11 +162,12 @@ TEST(ScheduleTest, BranchesCrossingWithinTheShiftReachAreMovedApartNotCut) {
   std::vector<int> shifts;
   EXPECT_EQ(simulate_order(unmoved, s.patch_order, kMaxPatchShift, &shifts).size(), 0u);
   EXPECT_EQ(shifts, s.patch_shift);
-  EXPECT_EQ(simulate_order(unmoved, s.patch_order, 0).size(), 1u);
+  EXPECT_EQ(simulate_order(unmoved, s.patch_order, 0, nullptr, 0).size(), 1u);
   // With moves switched off the scheduler cuts, as before.
   ScheduleParams fixed;
   fixed.trials = 30;
   fixed.max_patch_shift = 0;
+  fixed.max_aside = 0;
   EXPECT_GE(schedule(mesh, fixed).cuts, 1);
   // The moved needles are the ones the emitter knits on: every piece passes
   // the bed checks ("crossing-branches" below and in schedule_vm_test).
@@ -130,42 +175,50 @@ TEST(ScheduleTest, BranchesCrossingWithinTheShiftReachAreMovedApartNotCut) {
 
 // improve_order (§7.3's random orders, then a local search): never more
 // cuts than the order it starts from, the count it returns is the order's,
-// and the order is still one the patch graph allows.
+// and the order is still one the patch graph allows; with held loops kept
+// in place (these shapes need no cut once loops may be set aside) and set
+// aside.
 TEST(ScheduleTest, RefinedOrdersNeverCutMoreAndKeepThePatchGraphOrder) {
   int before = 0;
   int after = 0;
-  for (std::uint64_t seed = 0; seed < 40; ++seed) {
-    SCOPED_TRACE("random shape " + std::to_string(seed));
-    Schedule s;
-    const StitchMesh mesh = fx::random_shape(seed);
-    build_rows(mesh, s);
-    build_patches(s);
-    assign_needles(mesh, s);
-    std::vector<std::set<int>> succ(s.patches.size());
-    for (std::size_t r = 0; r < s.rows.size(); ++r) {
-      for (int v : s.row_successors[r]) {
-        const int a = s.rows[r].patch;
-        const int b = s.rows[static_cast<std::size_t>(v)].patch;
-        if (a != b) succ[static_cast<std::size_t>(a)].insert(b);
+  for (const int max_aside : {0, kMaxAside}) {
+    for (std::uint64_t seed = 0; seed < 40; ++seed) {
+      SCOPED_TRACE("random shape " + std::to_string(seed));
+      Schedule s;
+      const StitchMesh mesh = fx::random_shape(seed);
+      build_rows(mesh, s);
+      build_patches(s);
+      assign_needles(mesh, s);
+      std::vector<std::set<int>> succ(s.patches.size());
+      for (std::size_t r = 0; r < s.rows.size(); ++r) {
+        for (int v : s.row_successors[r]) {
+          const int a = s.rows[r].patch;
+          const int b = s.rows[static_cast<std::size_t>(v)].patch;
+          if (a != b) succ[static_cast<std::size_t>(a)].insert(b);
+        }
       }
-    }
-    for (std::uint64_t trial = 0; trial < 3; ++trial) {
-      std::vector<int> order = random_patch_order(s, 5, trial);
-      const int start = static_cast<int>(simulate_order(s, order).size());
-      const int cuts = improve_order(s, order, kMaxPatchShift, 1000);
-      EXPECT_LE(cuts, start);
-      EXPECT_EQ(cuts, static_cast<int>(simulate_order(s, order).size()));
-      std::vector<int> position(s.patches.size(), -1);
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        ASSERT_EQ(position[static_cast<std::size_t>(order[i])], -1) << "patch twice";
-        position[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+      for (std::uint64_t trial = 0; trial < 3; ++trial) {
+        std::vector<int> order = random_patch_order(s, 5, trial);
+        const int start =
+            static_cast<int>(simulate_order(s, order, kMaxPatchShift, nullptr, max_aside).size());
+        const int cuts = improve_order(s, order, kMaxPatchShift, 1000, max_aside);
+        EXPECT_LE(cuts, start);
+        EXPECT_EQ(cuts, static_cast<int>(
+                            simulate_order(s, order, kMaxPatchShift, nullptr, max_aside).size()));
+        std::vector<int> position(s.patches.size(), -1);
+        for (std::size_t i = 0; i < order.size(); ++i) {
+          ASSERT_EQ(position[static_cast<std::size_t>(order[i])], -1) << "patch twice";
+          position[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+        }
+        ASSERT_EQ(order.size(), s.patches.size());
+        for (std::size_t a = 0; a < succ.size(); ++a) {
+          for (int b : succ[a]) EXPECT_LT(position[a], position[static_cast<std::size_t>(b)]);
+        }
+        if (max_aside == 0) {
+          before += start;
+          after += cuts;
+        }
       }
-      ASSERT_EQ(order.size(), s.patches.size());
-      for (std::size_t a = 0; a < succ.size(); ++a) {
-        for (int b : succ[a]) EXPECT_LT(position[a], position[static_cast<std::size_t>(b)]);
-      }
-      before += start;
-      after += cuts;
     }
   }
   // Over all shapes the search removes cuts the random orders leave.
@@ -492,7 +545,8 @@ std::vector<Case> cases() {
           {"short-rows-both-sides", fx::short_rows(14, 3, true)},
           {"y-shape", fx::y_shape(14, 3, 5, 4)},
           {"crossing-branches", fx::crossing_branches(12, 3, 10)},
-          {"crossing-branches-cut", fx::crossing_branches(12, 3, 22)}};
+          {"crossing-branches-aside", fx::crossing_branches(12, 3, 22)},
+          {"crossing-branches-cut", fx::crossing_branches(12, 3, 30)}};
 }
 
 int subdivided_faces(const StitchMesh& mesh, const Schedule& s, const Piece& piece) {
@@ -573,8 +627,8 @@ TEST(KnitoutEmitTest, RandomShapesGiveValidKnitout) {
   // 150 fixed-seed random shapes (shaping, short rows, branches), both
   // patterns: every piece passes the bed checker and has one knit per
   // subdivided face. Every other shape is scheduled without moving patches
-  // sideways (with moves none of these shapes needs a cut), so cut pieces
-  // are knit too.
+  // sideways or setting held loops aside (with them none of these shapes
+  // needs a cut), so cut pieces are knit too.
   int pieces = 0, cut = 0, branched = 0, moved = 0;
   for (std::uint32_t seed = 1; seed <= 150; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -584,6 +638,7 @@ TEST(KnitoutEmitTest, RandomShapesGiveValidKnitout) {
     schedule_params.seed = seed;
     schedule_params.threads = 1;
     schedule_params.max_patch_shift = seed % 2 == 0 ? 0 : kMaxPatchShift;
+    schedule_params.max_aside = seed % 2 == 0 ? 0 : kMaxAside;
     Schedule s;
     ASSERT_NO_THROW(s = schedule(mesh, schedule_params));
     cut += s.cuts > 0 ? 1 : 0;
