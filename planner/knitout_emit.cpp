@@ -317,6 +317,19 @@ class Emitter {
     }
     return {from, kNoNeedle};
   }
+  // A schoolbus plan's transfers, in a pass of their own, ending at racking 0.
+  void make_transfers(const std::vector<Transfer>& plan) {
+    end_pass();
+    for (const Transfer& tr : plan) {
+      rack(tr.racking);
+      if (tr.to_back) {
+        xfer('f', tr.front, 'b', tr.back);
+      } else {
+        xfer('b', tr.back, 'f', tr.front);
+      }
+    }
+    rack(0);
+  }
   void move_loop(int from, int to) {
     end_pass();
     rack(0);
@@ -417,16 +430,7 @@ class Emitter {
           return it != front_.end() && !it->second.empty() && from.count(n) == 0;
         },
         8);
-    end_pass();
-    for (const Transfer& tr : plan) {
-      rack(tr.racking);
-      if (tr.to_back) {
-        xfer('f', tr.front, 'b', tr.back);
-      } else {
-        xfer('b', tr.back, 'f', tr.front);
-      }
-    }
-    rack(0);
+    make_transfers(plan);
     end_pass();
     for (std::size_t i = 0; i < edges.size(); ++i) {
       where_[edges[i]] = moves[i].to;
@@ -601,16 +605,7 @@ class Emitter {
     cut_yarn_if_far(start, yarn_at);
     std::vector<int> order(faces.begin(), faces.end());  // in pass A's direction
     if (dir < 0) std::reverse(order.begin(), order.end());
-    end_pass();
-    for (const Transfer& t : plan) {
-      rack(t.racking);
-      if (t.to_back) {
-        xfer('f', t.front, 'b', t.back);
-      } else {
-        xfer('b', t.back, 'f', t.front);
-      }
-    }
-    rack(0);
+    make_transfers(plan);
     // Every face's needle now holds exactly its own loops.
     for (int f : faces) {
       const FaceLinks& fl = s_.faces[static_cast<std::size_t>(f)];

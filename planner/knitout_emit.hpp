@@ -13,14 +13,14 @@
 // ("tuck and turn", Fig. 12); the one at the near end is missed.
 //
 // Instructions (§7.5): loops move between rows with transfers planned by
-// planner::schoolbus; course edges with no loop below are cast on with an
-// alternating tuck cast-on; course edges with nothing above (or cut, §7.3)
-// are bound off with a chain bind-off whose last loop joins the next live
-// loop of the row or, at the top of a branch, stays on the bed: on a needle
-// no later row needs, or moved aside (within the racking limit) to the one
-// needed latest and moved on when that row comes. It is dropped (and can
-// unravel) only when no needle within reach is free. The seed pattern knits
-// purls on the back bed, checkerboard in (pass, needle).
+// planner::schoolbus (and, before the rows the schedule names, loops held
+// for later rows move aside: Schedule::aside_moves); course edges with no loop below are cast on
+// with an alternating tuck cast-on; course edges with nothing above (or cut, §7.3) are bound off
+// with a chain bind-off whose last loop joins the next live loop of the row or, at the top of a
+// branch, stays on the bed: on a needle no later row needs, or moved aside (within the racking
+// limit) to the one needed latest and moved on when that row comes. It is dropped (and can unravel)
+// only when no needle within reach is free. The seed pattern knits purls on the back bed,
+// checkerboard in (pass, needle).
 //
 // Carriers: one carrier (default "3") comes in with `inhook`, is released
 // with `releasehook` after the first pass of stitches, and leaves with

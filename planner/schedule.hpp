@@ -7,8 +7,10 @@
 //                       serial chains collapsed into patches
 //   assign_needles      §7.2: needles per course edge, per patch from its bottom
 //                       row, then patches shifted to agree along their boundaries
-//   choose_order        §7.3: random patch orders simulated on the needle bed;
-//                       each overlap adds a cut; the order with fewest cuts wins
+//   choose_order        §7.3: random patch orders simulated on the needle bed
+//                       (patches moved sideways, held loops set aside where
+//                       that clears an overlap); each overlap left adds a
+//                       cut; the order with fewest cuts wins
 //   make_pieces         the connected parts left once the cuts are made
 // Tracing, subdivision and knitout are in knitout_emit.hpp (§7.4-7.5).
 //
@@ -41,7 +43,7 @@ inline constexpr int kNone = -1;
 // compares 4 and 8 over the shared meshes).
 inline constexpr int kMaxPatchShift = 8;
 
-// §7.3 (docs/scheduling.md, "Held loops set aside"): the furthest (in
+// §7.3 (docs/scheduling.md, "Setting held loops aside"): the furthest (in
 // needles, in all) the order simulation moves loops held for a later row
 // out of the way of a patch that would cover them; again one round of the
 // schoolbus.

@@ -96,7 +96,7 @@ TEST(ScheduleTest, BranchesCrossingBeyondTheShiftReachHaveTheHeldLoopsSetAside) 
   // The crossing 22 rows high: the branch knit first widens 22 needles over
   // the three loops held for the other. Moved by kMaxPatchShift it still
   // covers them; with them moved kMaxAside the other way it does not, so no
-  // cut is needed (§7.3, docs/scheduling.md "Held loops set aside").
+  // cut is needed (§7.3, docs/scheduling.md "Setting held loops aside").
   const StitchMesh mesh = fx::crossing_branches(12, 3, 22);
   const Schedule s = run(mesh, 30);
   ASSERT_EQ(s.patches.size(), 3u);
