@@ -293,6 +293,8 @@ std::string merge_stitch_report(const std::string& dir, const StitchMeshReport& 
       {"sides_split_below", report.stats.sides_split_below},
       {"row_time_levelled", report.stats.row_time_levelled},
       {"tip_sides", report.stats.tip_sides},
+      {"relax_sweeps", report.stats.relax_sweeps},
+      {"relax_seconds", report.stats.relax_seconds},
       {"off_surface",
        {{"faces", report.off_surface.faces.size()},
         {"max_offset_mm", report.off_surface.max_offset_mm},

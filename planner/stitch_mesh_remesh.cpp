@@ -12,6 +12,7 @@
 #include <numeric>
 #include <optional>
 #include <queue>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
@@ -1384,6 +1385,16 @@ struct Builder {
     return true;
   }
 
+  // Which ends of a strip of a bottom and b top sides, the chains sharing
+  // their left and/or right end, get a short-row triangle (§6.3).
+  static std::pair<bool, bool> end_triangles(int a, int b, bool left_shared, bool right_shared) {
+    const bool room_for_both = a >= 2 && b >= 2;
+    const bool left = left_shared && (room_for_both || !right_shared) && a >= 1 && b >= 1;
+    const bool right = right_shared && (room_for_both || !left_shared) && a >= 1 && b >= 1 &&
+                       !(left && (a < 2 || b < 2));
+    return {left, right};
+  }
+
   // Whether the zip below can make only valid faces from a bottom chain of
   // a and a top chain of b segments (after the end triangles of shared ends,
   // neither more than twice the other).
@@ -1393,10 +1404,7 @@ struct Builder {
         high_counts[0] == 1 && high.runs[0].level != high.runs[1].level) {
       return true;  // a short-row triangle with a boundary wale side
     }
-    const bool room_for_both = a >= 2 && b >= 2;
-    const bool left = left_shared && (room_for_both || !right_shared) && a >= 1 && b >= 1;
-    const bool right = right_shared && (room_for_both || !left_shared) && a >= 1 && b >= 1 &&
-                       !(left && (a < 2 || b < 2));
+    const auto [left, right] = end_triangles(a, b, left_shared, right_shared);
     const int na = a - left - right;
     const int nb = b - left - right;
     return (na == 0 && nb == 0) || (na > 0 && nb > 0 && na <= 2 * nb && nb <= 2 * na);
@@ -1701,15 +1709,16 @@ struct Builder {
     std::vector<std::int32_t> low_arcs;
     std::vector<std::int32_t> high_arcs;
     const std::vector<int> l = chain_vertices(loop.front(), low_counts, low_arcs);
+    const bool left_shared = left_wale == nullptr;
+    const bool right_shared = right_wale == nullptr;
+    const int a = static_cast<int>(l.size()) - 1;
+    const int b = std::accumulate(high_counts.begin(), high_counts.end(), 0);
+    const auto [left_triangle, right_triangle] = end_triangles(a, b, left_shared, right_shared);
     std::vector<bool> high_on_level;
     std::vector<int> h = chain_vertices(*high, high_counts, high_arcs, &high_on_level);
-    const int a = static_cast<int>(l.size()) - 1;
-    const int b = static_cast<int>(h.size()) - 1;
     // Top chain left to right: t[j] = h[b - j]; top segment j is high segment b - 1 - j.
     std::vector<int> t(h.rbegin(), h.rend());
     auto top_arc = [&](int j) { return high_arcs[at(b - 1 - j)]; };
-    const bool left_shared = left_wale == nullptr;
-    const bool right_shared = right_wale == nullptr;
     if (left_shared != (t.front() == l.front()) || right_shared != (t.back() == l.back())) {
       throw std::logic_error("stitch meshing: chain ends disagree with the strip's sides");
     }
@@ -1733,10 +1742,6 @@ struct Builder {
     int j1 = b;
     std::int32_t left_arc = left_wale != nullptr ? wale_arc(*left_wale) : kNoArc;
     std::int32_t right_arc = right_wale != nullptr ? wale_arc(*right_wale) : kNoArc;
-    const bool room_for_both = a >= 2 && b >= 2;
-    const bool left_triangle = left_shared && (room_for_both || !right_shared) && a >= 1 && b >= 1;
-    const bool right_triangle = right_shared && (room_for_both || !left_shared) && a >= 1 &&
-                                b >= 1 && !(left_triangle && (a < 2 || b < 2));
     if (left_triangle) {
       // §6.3 short row ending on the left: the strip narrows to a point.
       add_face({l[0], l[1], t[1]}, {R::CourseIn, R::Wale, R::CourseOut},
@@ -1819,6 +1824,113 @@ struct Builder {
     }
   }
 };
+
+// The disc as triangles (fans of its faces), for exact distances and
+// nearest points.
+cloth::TriangleMeshQuery disc_surface(const LabelledDisc& disc) {
+  std::vector<std::array<int, 3>> triangles;
+  for (const std::vector<int>& face : disc.faces) {
+    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+      triangles.push_back({face[0], face[i], face[i + 1]});
+    }
+  }
+  return cloth::TriangleMeshQuery(disc.positions, std::move(triangles));
+}
+
+Vec3 polygon_normal(const StitchMesh& mesh, const StitchFace& face) {
+  Vec3 normal = Vec3::Zero();
+  const std::size_t n = face.vertices.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    normal += mesh.positions[face.vertices[i]].cross(mesh.positions[face.vertices[(i + 1) % n]]);
+  }
+  return normal;
+}
+
+// Step 5, relaxing (docs/stitch-mesh.md): the stitch vertices inside the
+// sheet move over the cut mesh so that the sides come closer to their
+// target lengths, course or wale; the boundary's vertices stay. Each sweep
+// moves each inner vertex to where its sides, as springs of their target
+// lengths, would hold it (each weighted by 1 / target^2, and less the
+// farther it is off, so a fan's chord across a hole does not drag the
+// sheet), then onto the nearest point of the surface. A move that turns an
+// incident face over is not made. The faces and their types do not change.
+// Returns the number of sweeps made.
+int relax_positions(StitchMesh& mesh, const LabelledDisc& disc, int sweeps) {
+  if (sweeps <= 0) return 0;
+  const cloth::TriangleMeshQuery surface = disc_surface(disc);
+  struct Spring {
+    std::uint32_t other;
+    double target;
+  };
+  const std::size_t count = mesh.positions.size();
+  std::vector<std::vector<Spring>> springs(count);
+  std::vector<std::vector<std::size_t>> faces_of(count);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, EdgeRole> sides;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> directed;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const StitchFace& face = mesh.faces[f];
+    const std::size_t n = face.vertices.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t a = face.vertices[i];
+      const std::uint32_t b = face.vertices[(i + 1) % n];
+      faces_of[a].push_back(f);
+      directed.insert({a, b});
+      sides.emplace(std::make_pair(std::min(a, b), std::max(a, b)), face.roles[i]);
+    }
+  }
+  std::vector<bool> fixed(count, false);
+  for (const auto& [a, b] : directed) {
+    if (directed.count({b, a}) == 0) fixed[a] = fixed[b] = true;
+  }
+  for (const auto& [side, role] : sides) {
+    const double target = role == EdgeRole::Wale ? mesh.wale_mm : mesh.course_mm;
+    springs[side.first].push_back({side.second, target});
+    springs[side.second].push_back({side.first, target});
+  }
+  std::vector<Vec3> normals;
+  for (const StitchFace& face : mesh.faces) normals.push_back(polygon_normal(mesh, face));
+  // A vertex is visited again only while it or a neighbour still moves.
+  const double still = 1e-4 * mesh.course_mm;
+  std::vector<bool> active(count, true);
+  std::vector<bool> moved(count, false);
+  int sweep = 0;
+  while (sweep < sweeps) {
+    ++sweep;
+    std::fill(moved.begin(), moved.end(), false);
+    for (std::size_t v = 0; v < count; ++v) {
+      if (fixed[v] || springs[v].empty() || !active[v]) continue;
+      const Vec3 x = mesh.positions[v];
+      Vec3 sum = Vec3::Zero();
+      double weights = 0;
+      for (const Spring& s : springs[v]) {
+        const Vec3 d = x - mesh.positions[s.other];
+        const double length = d.norm();
+        if (!(length > 0)) continue;
+        const double off = (length - s.target) / (0.5 * s.target);
+        const double w = 1.0 / (s.target * s.target * (1 + off * off));
+        sum += w * (mesh.positions[s.other] + s.target / length * d);
+        weights += w;
+      }
+      if (!(weights > 0)) continue;
+      mesh.positions[v] = surface.closest_point(sum / weights);
+      for (std::size_t f : faces_of[v]) {
+        if (polygon_normal(mesh, mesh.faces[f]).dot(normals[f]) <= 0) {
+          mesh.positions[v] = x;
+          break;
+        }
+      }
+      moved[v] = (mesh.positions[v] - x).norm() > still;
+    }
+    bool any = false;
+    for (std::size_t v = 0; v < count; ++v) {
+      active[v] = moved[v];
+      for (const Spring& s : springs[v]) active[v] = active[v] || moved[s.other];
+      any = any || active[v];
+    }
+    if (!any) break;
+  }
+  return sweep;
+}
 
 }  // namespace
 
@@ -1989,6 +2101,9 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   result.stats.sides_split_below = builder.stats.sides_split_below;
   result.stats.tip_sides = builder.stats.tip_sides;
   result.mesh = std::move(builder.mesh);
+  const auto relax_start = std::chrono::steady_clock::now();
+  result.stats.relax_sweeps = relax_positions(result.mesh, disc, params.relax_sweeps);
+  result.stats.relax_seconds = seconds_since(relax_start);
   result.problems = std::move(builder.problems);
   for (std::string& line : check(result.mesh)) result.problems.push_back(std::move(line));
   result.stats.total_seconds = seconds_since(start);
@@ -2128,13 +2243,7 @@ OffSurface off_surface_faces(const StitchMesh& mesh, const LabelledDisc& disc,
                              double tolerance_mm) {
   OffSurface out;
   out.tolerance_mm = tolerance_mm;
-  // The disc as triangles (fans of its faces), for exact distances.
-  std::vector<std::array<int, 3>> triangles;
-  for (const std::vector<int>& face : disc.faces) {
-    for (std::size_t i = 1; i + 1 < face.size(); ++i)
-      triangles.push_back({face[0], face[i], face[i + 1]});
-  }
-  const cloth::TriangleMeshQuery surface(disc.positions, std::move(triangles));
+  const cloth::TriangleMeshQuery surface = disc_surface(disc);
   std::unordered_map<std::uint64_t, double> offset_of;  // side -> midpoint distance
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const std::vector<std::uint32_t>& v = mesh.faces[f].vertices;

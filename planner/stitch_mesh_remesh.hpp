@@ -24,6 +24,10 @@
 //     fixed bottom can feed, a bind-off stretch becomes a wale side or a side
 //     below is split (docs/stitch-mesh.md); faces it still cannot make valid
 //     are reported.
+//  5. Relaxing: the stitch vertices inside the sheet move over the cut mesh
+//     towards their sides' target lengths (springs, Gauss-Seidel sweeps, each
+//     vertex put back on the surface); the boundary, the faces and their
+//     types stay as zipped.
 #pragma once
 
 #include <Eigen/Core>
@@ -75,6 +79,10 @@ struct AnisoRemeshParams {
   // boundary crosses the rows obliquely) ends instead in a wale side this
   // many wales long, cut from the boundary there (0: rows end in a point).
   double tip_side_wales = 0.9;
+  // Step 5: at most this many sweeps moving the inner stitch vertices over
+  // the surface so the sides come closer to their target lengths (0: as
+  // zipped). docs/stitch-mesh.md measures the count.
+  int relax_sweeps = 150;
 };
 
 struct AnisoRemeshStats {
@@ -94,6 +102,9 @@ struct AnisoRemeshStats {
   // Vertices whose row time was levelled because the fitted one had an
   // interior extremum (a strip with a hole); 0 when it had none.
   int row_time_levelled = 0;
+  // Step 5: sweeps made (fewer than asked once no vertex moves) and their time.
+  int relax_sweeps = 0;
+  double relax_seconds = 0;
   double solve_seconds = 0;
   double total_seconds = 0;
 };

@@ -141,7 +141,12 @@ int TriangleMeshQuery::build(int begin, int end) {
 }
 
 double TriangleMeshQuery::distance(const Vec3& p) const {
+  return (closest_point(p) - p).norm();
+}
+
+Vec3 TriangleMeshQuery::closest_point(const Vec3& p) const {
   double best = std::numeric_limits<double>::infinity();
+  Vec3 nearest = p;
   int stack[128];
   int top = 0;
   stack[top++] = 0;
@@ -152,7 +157,11 @@ double TriangleMeshQuery::distance(const Vec3& p) const {
       for (int i = node.begin; i < node.end; ++i) {
         const auto& t = triangles_[order_[i]];
         const Vec3 q = closest_on_triangle(p, vertices_[t[0]], vertices_[t[1]], vertices_[t[2]]);
-        best = std::min(best, (q - p).squaredNorm());
+        const double d = (q - p).squaredNorm();
+        if (d < best) {
+          best = d;
+          nearest = q;
+        }
       }
       continue;
     }
@@ -167,7 +176,7 @@ double TriangleMeshQuery::distance(const Vec3& p) const {
       stack[top++] = node.right;
     }
   }
-  return std::sqrt(best);
+  return nearest;
 }
 
 double TriangleMeshQuery::winding_number(const Vec3& p) const {

@@ -48,6 +48,8 @@ class TriangleMeshQuery {
 
   // Unsigned distance from `p` to the surface.
   double distance(const Vec3& p) const;
+  // The point of the surface nearest to `p`.
+  Vec3 closest_point(const Vec3& p) const;
   // Generalised winding number of the surface around `p` (1 inside a closed,
   // outward-oriented surface, 0 outside).
   double winding_number(const Vec3& p) const;

@@ -45,6 +45,30 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
   const auto off_faces = s.at("off_surface").at("faces").get<std::size_t>();
   EXPECT_EQ(off_faces > 0, result.err.find("P087") != std::string::npos) << result.err;
   EXPECT_EQ(off_faces > 0, s.at("off_surface").at("max_offset_mm").get<double>() > 2.875);
+  EXPECT_GT(s.at("relax_sweeps").get<int>(), 0);
+  EXPECT_LE(s.at("relax_sweeps").get<int>(), 150);
+  EXPECT_GE(s.at("relax_seconds").get<double>(), 0.0);
+
+  // --relax 0 keeps the zipped places: the same stitches, other vertex places.
+  const auto zipped = run_wearknit("stitch-mesh '" + dir.string() + "' --relax 0 -q --no-picture");
+  ASSERT_EQ(zipped.exit_code, 0) << zipped.err;
+  std::istringstream zipped_smobj(read_file(dir / "stitch-mesh.smobj"));
+  const auto as_zipped = planner::parse_smobj(zipped_smobj, "stitch-mesh.smobj", sink);
+  ASSERT_TRUE(as_zipped);
+  ASSERT_EQ(as_zipped->faces.size(), mesh->faces.size());
+  for (std::size_t f = 0; f < mesh->faces.size(); ++f) {
+    EXPECT_EQ(as_zipped->faces[f].vertices, mesh->faces[f].vertices) << "face " << f;
+    EXPECT_EQ(as_zipped->faces[f].type, mesh->faces[f].type) << "face " << f;
+  }
+  ASSERT_EQ(as_zipped->positions.size(), mesh->positions.size());
+  std::size_t moved = 0;
+  for (std::size_t v = 0; v < mesh->positions.size(); ++v) {
+    moved += (as_zipped->positions[v] - mesh->positions[v]).norm() > 1e-6;
+  }
+  EXPECT_GT(moved, 0u);
+  EXPECT_EQ(
+      nlohmann::json::parse(read_file(dir / "report.json")).at("stitch_mesh").at("relax_sweeps"),
+      0);
 
   // --stitch-mm replaces the swatch; a run again replaces only its own member.
   const auto again =
@@ -72,11 +96,15 @@ TEST(StitchMeshCliTest, RejectsBadGaugeOptions) {
   r = run_wearknit("stitch-mesh '" + dir.string() + "' --gauge 0");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "wearknit stitch-mesh: the gauge (needles per inch) must be positive\n");
-  r = run_wearknit("stitch-mesh '" + dir.string() + "' --row-end-wales -1");
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err,
-            "wearknit stitch-mesh: --straighten, --label-weight, --pentagon-cost, "
-            "--stability-cost, --outside-cost and --row-end-wales must not be negative\n");
+  for (const char* option : {"--row-end-wales -1", "--relax -1"}) {
+    r = run_wearknit("stitch-mesh '" + dir.string() + "' " + option);
+    EXPECT_EQ(r.exit_code, 2) << option;
+    EXPECT_EQ(r.err,
+              "wearknit stitch-mesh: --straighten, --label-weight, --pentagon-cost, "
+              "--stability-cost, --outside-cost, --row-end-wales and --relax must not be "
+              "negative\n")
+        << option;
+  }
 }
 
 TEST(StitchMeshCliTest, SaysWhatIsMissingAndWritesNothing) {

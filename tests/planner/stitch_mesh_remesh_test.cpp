@@ -3,14 +3,18 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "planner/stitch_mesh.hpp"
+#include "simulators/cloth/sdf.hpp"
 #include "tests/planner/stitch_discs.hpp"
 
 namespace planner {
@@ -268,6 +272,85 @@ TEST(StitchMeshRemeshTest, MeshesAConeWithDecreases) {
 TEST(StitchMeshRemeshTest, MeshesAHemisphereCap) {
   expect_good_stitch_mesh(sd::hemisphere(20), sd::hemisphere_area(20), default_params(),
                           "hemisphere");
+}
+
+// Step 5: relaxing moves only the vertices inside the sheet, keeps them on
+// the surface and every face as it was, and brings the sides closer to their
+// target lengths (the sum of squared relative errors, and the share within
+// 15%).
+TEST(StitchMeshRemeshTest, RelaxingBringsSidesToTheirLengthsAndKeepsTheStitches) {
+  const LabelledDisc disc = sd::hemisphere(20);
+  AnisoRemeshParams zipped_params = default_params();
+  zipped_params.relax_sweeps = 0;
+  const AnisoRemeshResult zipped = remesh_anisotropic(disc, zipped_params);
+  const AnisoRemeshResult relaxed = remesh_anisotropic(disc, default_params());
+  EXPECT_EQ(zipped.stats.relax_sweeps, 0);
+  EXPECT_GT(relaxed.stats.relax_sweeps, 0);
+  EXPECT_LE(relaxed.stats.relax_sweeps, default_params().relax_sweeps);
+  ASSERT_EQ(relaxed.mesh.faces.size(), zipped.mesh.faces.size());
+  ASSERT_EQ(relaxed.mesh.positions.size(), zipped.mesh.positions.size());
+  for (std::size_t f = 0; f < zipped.mesh.faces.size(); ++f) {
+    EXPECT_EQ(relaxed.mesh.faces[f].vertices, zipped.mesh.faces[f].vertices) << "face " << f;
+    EXPECT_EQ(relaxed.mesh.faces[f].roles, zipped.mesh.faces[f].roles) << "face " << f;
+    EXPECT_EQ(relaxed.mesh.faces[f].type, zipped.mesh.faces[f].type) << "face " << f;
+  }
+  // Boundary vertices (ends of a side with no reverse) stay; the others move
+  // and stay on the surface.
+  std::set<std::pair<std::uint32_t, std::uint32_t>> directed;
+  for (const StitchFace& face : zipped.mesh.faces) {
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      directed.insert({face.vertices[i], face.vertices[(i + 1) % face.vertices.size()]});
+    }
+  }
+  std::set<std::uint32_t> boundary;
+  for (const auto& [a, b] : directed) {
+    if (directed.count({b, a}) == 0) boundary.insert({a, b});
+  }
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& face : disc.faces) {
+    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+      triangles.push_back({face[0], face[i], face[i + 1]});
+    }
+  }
+  const cloth::TriangleMeshQuery surface(disc.positions, triangles);
+  std::size_t moved = 0;
+  for (std::uint32_t v = 0; v < zipped.mesh.positions.size(); ++v) {
+    const double shift = (relaxed.mesh.positions[v] - zipped.mesh.positions[v]).norm();
+    if (boundary.count(v) != 0) {
+      EXPECT_EQ(shift, 0.0) << "boundary vertex " << v;
+    } else {
+      moved += shift > 1e-3;
+      EXPECT_LT(surface.distance(relaxed.mesh.positions[v]), 1e-9) << "vertex " << v;
+    }
+  }
+  EXPECT_GT(moved, (zipped.mesh.positions.size() - boundary.size()) / 2);
+  auto squared_error = [](const StitchMesh& mesh) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, EdgeRole> sides;
+    for (const StitchFace& face : mesh.faces) {
+      for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+        const std::uint32_t a = face.vertices[i];
+        const std::uint32_t b = face.vertices[(i + 1) % face.vertices.size()];
+        sides[{std::min(a, b), std::max(a, b)}] = face.roles[i];
+      }
+    }
+    double sum = 0;
+    for (const auto& [side, role] : sides) {
+      const double target = role == EdgeRole::Wale ? mesh.wale_mm : mesh.course_mm;
+      const double d =
+          (mesh.positions[side.first] - mesh.positions[side.second]).norm() / target - 1;
+      sum += d * d;
+    }
+    return sum;
+  };
+  const double before = squared_error(zipped.mesh);
+  const double after = squared_error(relaxed.mesh);
+  std::printf("hemisphere: squared relative error %.3f zipped, %.3f relaxed (%d sweeps)\n", before,
+              after, relaxed.stats.relax_sweeps);
+  EXPECT_LT(after, 0.9 * before);
+  const StitchMeshFigures f0 = measure(zipped.mesh);
+  const StitchMeshFigures f1 = measure(relaxed.mesh);
+  EXPECT_GE(f1.course.within_15_percent, f0.course.within_15_percent);
+  EXPECT_GE(f1.wale.within_15_percent, f0.wale.within_15_percent);
 }
 
 // A flat square whose wale direction is +y except in a central disc, where

@@ -33,6 +33,23 @@ TEST(SdfTest, WindingNumberIsOneInsideAndZeroOutside) {
   EXPECT_NEAR(query.winding_number({0, 0, -5}), 0.0, 0.05);
 }
 
+TEST(SdfTest, ClosestPointLiesOnTheNearestTriangle) {
+  // Two triangles: a unit right triangle in z = 0 and its copy raised to z = 1.
+  const std::vector<Vec3> vertices{{0, 0, 0}, {1, 0, 0}, {0, 1, 0},
+                                   {0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+  const cloth::TriangleMeshQuery query(vertices, {{0, 1, 2}, {3, 4, 5}});
+  // Above the lower face's inside: straight down onto it.
+  EXPECT_TRUE(query.closest_point({0.2, 0.3, 0.4}).isApprox(Vec3(0.2, 0.3, 0.0)));
+  // Nearer the upper one: onto it.
+  EXPECT_TRUE(query.closest_point({0.2, 0.3, 0.7}).isApprox(Vec3(0.2, 0.3, 1.0)));
+  // Beyond the hypotenuse: onto the edge; beyond a corner: the corner.
+  EXPECT_TRUE(query.closest_point({1, 1, -0.1}).isApprox(Vec3(0.5, 0.5, 0.0)));
+  EXPECT_TRUE(query.closest_point({-1, -2, -0.3}).isApprox(Vec3(0, 0, 0)));
+  // The distance is the distance to that point.
+  const Vec3 p(0.9, 0.8, 0.3);
+  EXPECT_DOUBLE_EQ(query.distance(p), (query.closest_point(p) - p).norm());
+}
+
 TEST(SdfTest, WindingNumberSignSurvivesAHole) {
   // A sphere with its north cap removed is no longer closed; ray parity
   // would flip at random, the winding number stays near 1 in the middle.
