@@ -548,6 +548,12 @@ int find(std::vector<int>& parent, int x) {
 // ---------------------------------------------------------------------------
 // Steps 3-4: chains of each strip, stitch vertices, faces.
 
+// Wales of splitting edge a saddle split trades for one unit of
+// |ln(bottom / top)| in the strips it makes (split_folds). 1 left the fans
+// of `teddy-quad`; 2 and 4 gave the same stitch meshes on the 38 shared
+// meshes (docs/stitch-mesh.md, "Fans").
+constexpr double kSplitBalance = 2.0;
+
 enum class Side : std::uint8_t { Low, High, Wale };
 
 struct Run {
@@ -561,6 +567,12 @@ struct Chain {
   Side side = Side::Wale;
   std::vector<Run> runs;
 };
+
+double chain_length(const Chain& chain) {
+  double length = 0;
+  for (const Run& r : chain.runs) length += r.length;
+  return length;
+}
 
 // Neighbouring boundary runs of a chain are one stretch of boundary: join
 // them into one run (isoline runs stay apart).
@@ -1300,7 +1312,13 @@ struct Builder {
   // meet) cuts off a simple strip of the two chains between them, and leaves
   // m - 1 pairs. A side chain at such a corner is first joined to the
   // bottom chain there (cast-on stitches), so the corner is a point. Of the
-  // 2m possible edges the shortest is used; the rest is split again.
+  // 2m possible edges the one of least cost is used; the rest is split again.
+  // The cost is the edge's length plus, for each of the two strips it makes,
+  // kSplitBalance wales per unit of |ln(bottom / top)|: a strip whose bottom
+  // is much longer or shorter than its top is zipped with a run of decreases
+  // or increases whose wale sides fan out across it (docs/stitch-mesh.md,
+  // "Fans"), so the split pairs chains of like length where the edges differ
+  // little.
   bool split_folds(const std::string& where, std::vector<Chain> loop) {
     while (loop.front().side != Side::Low) std::rotate(loop.begin(), loop.begin() + 1, loop.end());
     std::vector<Chain> courses;
@@ -1333,15 +1351,32 @@ struct Builder {
       return sides[k].runs.empty() ? first_vertex(courses[(k + 1) % n]) : first_vertex(sides[k]);
     };
     std::size_t pick = 0;
-    double shortest = std::numeric_limits<double>::infinity();
+    double least = std::numeric_limits<double>::infinity();
     bool found = false;
+    // Bottom and top lengths of the cut-off strip (chains k+1, k+2) and the rest.
+    auto imbalance = [&](std::size_t k) {
+      std::array<double, 4> length{};  // part bottom, part top, rest bottom, rest top
+      for (std::size_t j = 0; j < n; ++j) {
+        const bool in_part = j == (k + 1) % n || j == (k + 2) % n;
+        const bool top = courses[j].side == Side::High;
+        length[at((in_part ? 0 : 2) + (top ? 1 : 0))] += chain_length(courses[j]);
+      }
+      const double floor = 1e-3 * mesh.course_mm;
+      double sum = 0;
+      for (int i : {0, 2}) {
+        sum +=
+            std::abs(std::log(std::max(length[at(i)], floor) / std::max(length[at(i + 1)], floor)));
+      }
+      return sum;
+    };
     for (std::size_t k = 0; k < n; ++k) {
       if (!usable(k) || !usable((k + 2) % n)) continue;
       found = true;
-      const double d =
-          (pieces.position[at(corner(k))] - pieces.position[at(corner((k + 2) % n))]).norm();
-      if (d < shortest) {
-        shortest = d;
+      const double cost =
+          (pieces.position[at(corner(k))] - pieces.position[at(corner((k + 2) % n))]).norm() +
+          kSplitBalance * mesh.wale_mm * imbalance(k);
+      if (cost < least) {
+        least = cost;
         pick = k;
       }
     }
@@ -1624,8 +1659,7 @@ struct Builder {
     if (lows != 1 || highs != 1) {
       std::string pattern;
       for (const Chain& c : loop) {
-        double len = 0;
-        for (const Run& r : c.runs) len += r.length;
+        const double len = chain_length(c);
         pattern += std::string(" ") +
                    (c.side == Side::Low    ? "L"
                     : c.side == Side::High ? "H"

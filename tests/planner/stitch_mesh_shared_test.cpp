@@ -64,9 +64,8 @@ const std::map<std::string, Limits>& below_target() {
   // clang-format off
   static const std::map<std::string, Limits> limits = {
       {"armadillo-qd", {.within = 0.85}},
-      {"double-torus-qd", {.mean = 0.09, .wale_mean = 0.27}},
       {"half-torus", {.wale_mean = 0.08}},
-      {"teddy-quad", {.wale_mean = 0.27}},
+      {"teddy-quad", {.wale_mean = 0.13}},
       {"torus-quad-coarse", {.wale_within = 0.82}},
   };
   // clang-format on
