@@ -548,10 +548,11 @@ int find(std::vector<int>& parent, int x) {
 // ---------------------------------------------------------------------------
 // Steps 3-4: chains of each strip, stitch vertices, faces.
 
-// Wales of splitting edge a saddle split trades for one unit of
-// |ln(bottom / top)| in the strips it makes (split_folds). 1 left the fans
-// of `teddy-quad`; 2 and 4 gave the same stitch meshes on the 38 shared
-// meshes (docs/stitch-mesh.md, "Fans").
+// A saddle split (split_folds) takes a splitting edge up to this many wales
+// longer to make strips whose bottom and top lengths differ by one unit of
+// |ln(bottom / top)| less. 1 left the fans of `teddy-quad`; 2 and 4 gave the
+// same stitch meshes on the 38 shared meshes (docs/stitch-mesh.md, "Saddle
+// splits").
 constexpr double kSplitBalance = 2.0;
 
 enum class Side : std::uint8_t { Low, High, Wale };
@@ -1317,8 +1318,8 @@ struct Builder {
   // kSplitBalance wales per unit of |ln(bottom / top)|: a strip whose bottom
   // is much longer or shorter than its top is zipped with a run of decreases
   // or increases whose wale sides fan out across it (docs/stitch-mesh.md,
-  // "Fans"), so the split pairs chains of like length where the edges differ
-  // little.
+  // "Saddle splits"), so the split pairs chains of like length where the
+  // edges differ little.
   bool split_folds(const std::string& where, std::vector<Chain> loop) {
     while (loop.front().side != Side::Low) std::rotate(loop.begin(), loop.begin() + 1, loop.end());
     std::vector<Chain> courses;
@@ -1361,7 +1362,7 @@ struct Builder {
         const bool top = courses[j].side == Side::High;
         length[at((in_part ? 0 : 2) + (top ? 1 : 0))] += chain_length(courses[j]);
       }
-      const double floor = 1e-3 * mesh.course_mm;
+      const double floor = 1e-3 * params.course_mm;
       double sum = 0;
       for (int i : {0, 2}) {
         sum +=
@@ -1374,7 +1375,7 @@ struct Builder {
       found = true;
       const double cost =
           (pieces.position[at(corner(k))] - pieces.position[at(corner((k + 2) % n))]).norm() +
-          kSplitBalance * mesh.wale_mm * imbalance(k);
+          kSplitBalance * params.wale_mm * imbalance(k);
       if (cost < least) {
         least = cost;
         pick = k;
