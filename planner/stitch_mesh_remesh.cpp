@@ -575,6 +575,11 @@ double chain_length(const Chain& chain) {
   return length;
 }
 
+// A chain of disc boundary only (no level curve).
+bool boundary_only(const Chain& chain) {
+  return std::none_of(chain.runs.begin(), chain.runs.end(), [](const Run& r) { return r.level; });
+}
+
 // Neighbouring boundary runs of a chain are one stretch of boundary: join
 // them into one run (isoline runs stay apart).
 void join_boundary_runs(Chain& chain) {
@@ -993,13 +998,7 @@ struct Builder {
       if (!changed && out.size() > 2) {
         for (Chain& c : out) {
           if (c.side == Side::Wale) continue;
-          double length = 0;
-          bool boundary_only = true;
-          for (const Run& r : c.runs) {
-            length += r.length;
-            boundary_only = boundary_only && !r.level;
-          }
-          if (boundary_only && length < params.step_mm_factor * params.wale_mm) {
+          if (boundary_only(c) && chain_length(c) < params.step_mm_factor * params.wale_mm) {
             c.side = Side::Wale;
             changed = true;
             break;
@@ -1017,13 +1016,8 @@ struct Builder {
         Chain* pick = nullptr;
         for (Chain& c : out) {
           if (c.side == Side::Wale) continue;
-          double length = 0;
-          bool boundary_only = true;
-          for (const Run& r : c.runs) {
-            length += r.length;
-            boundary_only = boundary_only && !r.level;
-          }
-          if (boundary_only && length < shortest) {
+          const double length = chain_length(c);
+          if (boundary_only(c) && length < shortest) {
             shortest = length;
             pick = &c;
           }
@@ -1169,9 +1163,7 @@ struct Builder {
       Chain& a = out[(i + out.size() - 1) % out.size()];
       Chain& b = out[(i + 1) % out.size()];
       if (&a == &b || a.side == Side::Wale || b.side == Side::Wale) continue;
-      const bool boundary_only =
-          std::none_of(c.runs.begin(), c.runs.end(), [](const Run& r) { return r.level; });
-      if (!boundary_only) continue;
+      if (!boundary_only(c)) continue;
       const Vec3 start = point(pieces.from[at(c.runs.front().halfedges.front())]);
       const Vec3 end = point(pieces.to(c.runs.back().halfedges.back()));
       if ((end - start).norm() >= length - tolerance) continue;
