@@ -793,8 +793,10 @@ struct Builder {
   }
 
   // Before any strip is zipped: a strip whose bottom is one level curve and
-  // whose top has more runs (each needs a side) than twice that curve's
-  // sides can feed asks the strip below to sample the curve more finely.
+  // whose top needs more sides (one for each run, or the run's own minimum)
+  // than twice that curve's sides can feed asks the strip below to sample the
+  // curve more finely. Called from the top row down, so a minimum passes
+  // down through as many rows as need it.
   void plan_minimums(const std::vector<Chain>& loop) {
     const Chain* low = nullptr;
     int lows = 0;
@@ -806,7 +808,8 @@ struct Builder {
         low = &c;
       } else if (c.side == Side::High) {
         ++highs;
-        top_runs = static_cast<int>(c.runs.size());
+        top_runs = 0;
+        for (const Run& run : c.runs) top_runs += minimum(run);
       }
     }
     if (lows != 1 || highs != 1 || low->runs.size() != 1 || !low->runs.front().level) return;
@@ -1432,7 +1435,11 @@ struct Builder {
         high_counts[0] == 1 && high.runs[0].level != high.runs[1].level) {
       return true;  // a short-row triangle with a boundary wale side
     }
+    if (left_shared && right_shared && a == 1 && b == 1) return true;  // a lens
     const auto [left, right] = end_triangles(a, b, left_shared, right_shared);
+    // A shared end without its triangle would give the face there a wale
+    // side of no length.
+    if ((left_shared && !left) || (right_shared && !right)) return false;
     const int na = a - left - right;
     const int nb = b - left - right;
     return (na == 0 && nb == 0) || (na > 0 && nb > 0 && na <= 2 * nb && nb <= 2 * na);
@@ -1630,23 +1637,43 @@ struct Builder {
         lows = highs = 1;
       }
     }
-    if (loop.size() == 1 && loop.front().side != Side::Wale && loop.front().runs.size() > 1) {
+    if (loop.size() == 1 && loop.front().side != Side::Wale && !boundary_only(loop.front()) &&
+        std::any_of(loop.front().runs.begin(), loop.front().runs.end(),
+                    [](const Run& r) { return !r.level; })) {
       // One course chain all round: a level curve closed by boundary that
-      // faces the same way. The boundary is the other chain.
+      // faces the same way, or by a stretch of boundary too short to face
+      // either way (the row begins or ends at a tip of the boundary, which
+      // happens where rows are tall against the cut's features). The longest
+      // stretch of boundary is the other chain.
       Chain& only = loop.front();
       const Side other = only.side == Side::Low ? Side::High : Side::Low;
-      while (!only.runs.front().level)
-        std::rotate(only.runs.begin(), only.runs.begin() + 1, only.runs.end());
+      const std::size_t n = only.runs.size();
+      std::size_t best_end = n;  // the run after the longest stretch
+      double best = -1;
+      for (std::size_t end = 0; end < n; ++end) {
+        if (only.runs[end].level) continue;
+        const std::size_t next = (end + 1) % n;
+        if (!only.runs[next].level) continue;  // not the stretch's last run
+        double length = 0;
+        for (std::size_t k = end; !only.runs[k].level; k = (k + n - 1) % n) {
+          length += only.runs[k].length;
+        }
+        if (length > best) {
+          best = length;
+          best_end = next;
+        }
+      }
+      // The stretch ends the chain.
+      std::rotate(only.runs.begin(), only.runs.begin() + static_cast<std::ptrdiff_t>(best_end),
+                  only.runs.end());
       Chain rest;
       rest.side = other;
-      while (only.runs.size() > 1 && !only.runs.back().level) {
+      while (!only.runs.back().level) {
         rest.runs.insert(rest.runs.begin(), std::move(only.runs.back()));
         only.runs.pop_back();
       }
-      if (!rest.runs.empty() && only.runs.size() == 1) {
-        loop.push_back(std::move(rest));
-        lows = highs = 1;
-      }
+      loop.push_back(std::move(rest));
+      lows = highs = 1;
     }
     if (lows >= 2 && lows == highs && split_folds(where, loop)) return;
     if (lows != 1 || highs != 1) {
@@ -2100,12 +2127,14 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   std::vector<std::pair<int, int>> order;
   for (const auto& [root, strip_loops] : loops) order.push_back({pieces.band[at(root)], root});
   std::sort(order.begin(), order.end());
+  std::vector<std::vector<Chain>> single_loops;
   for (const auto& [band, root] : order) {
     const std::vector<std::vector<int>>& strip_loops = loops[root];
     if (strip_loops.size() == 1) {
-      builder.plan_minimums(builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris)));
+      single_loops.push_back(builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris)));
     }
   }
+  for (auto it = single_loops.rbegin(); it != single_loops.rend(); ++it) builder.plan_minimums(*it);
   for (const auto& [band, root] : order) {
     const std::vector<std::vector<int>>& strip_loops = loops[root];
     ++builder.stats.strips;
