@@ -195,16 +195,29 @@ TEST(StitchMeshSharedListTest, ListsEveryMesh) {
   }
 }
 
-class StitchMeshSharedTest : public ::testing::TestWithParam<std::string> {};
+// The cut mesh of the shared mesh named by the parameter, or a skip that
+// says why there is none in this build.
+class SharedDiscTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    WEARKNIT_REQUIRE_SHARED(shared);
+    if (const std::optional<std::string> why = too_slow_here(shared, GetParam()))
+      GTEST_SKIP() << *why;
+    disc_ = &shared_disc(shared, GetParam());
+    ASSERT_FALSE(disc_->faces.empty());
+  }
+  const LabelledDisc& disc() const { return *disc_; }
+
+ private:
+  const LabelledDisc* disc_ = nullptr;
+};
+
+class StitchMeshSharedTest : public SharedDiscTest {};
 
 // Issue 8's "done when", with the default options (rules of thumb on).
 TEST_P(StitchMeshSharedTest, IsAValidDiscOfTheIssueSizes) {
-  WEARKNIT_REQUIRE_SHARED(shared);
-  if (const std::optional<std::string> why = too_slow_here(shared, GetParam()))
-    GTEST_SKIP() << *why;
   Meshed m;
-  m.disc = shared_disc(shared, GetParam());
-  ASSERT_FALSE(m.disc.faces.empty());
+  m.disc = disc();
   m.result = remesh_anisotropic(m.disc, AnisoRemeshParams{});
   expect_valid(m);
   auto it = below_target().find(GetParam());
@@ -220,15 +233,11 @@ INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedTest, ::testing::ValuesIn(kMesh
 // begin and end at tips of the cut, and strips need the handling that
 // docs/stitch-mesh.md, "Other gauges", lists (each size made one of them
 // fail on some mesh without it).
-class StitchMeshSharedGaugeTest : public ::testing::TestWithParam<std::string> {};
+class StitchMeshSharedGaugeTest : public SharedDiscTest {};
 
 TEST_P(StitchMeshSharedGaugeTest, CoarseFlatAndTallStitchesGiveAValidDisc) {
-  WEARKNIT_REQUIRE_SHARED(shared);
-  if (const std::optional<std::string> why = too_slow_here(shared, GetParam()))
-    GTEST_SKIP() << *why;
   Meshed m;
-  m.disc = shared_disc(shared, GetParam());
-  ASSERT_FALSE(m.disc.faces.empty());
+  m.disc = disc();
   for (const auto& [course, wale] : std::vector<std::pair<double, double>>{
            {5, 5}, {8, 2}, {8, 8}, {12, 12}, {6, 12}, {10, 20}}) {
     SCOPED_TRACE(std::to_string(course) + " x " + std::to_string(wale) + " mm");
@@ -245,13 +254,11 @@ INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedGaugeTest, ::testing::ValuesIn(
 
 // The rules of thumb (the default) leave fewer unstable configurations than
 // sizes alone, and the stitch mesh stays valid either way.
-class StitchMeshSharedRulesTest : public ::testing::TestWithParam<std::string> {};
+class StitchMeshSharedRulesTest : public SharedDiscTest {};
 
 TEST_P(StitchMeshSharedRulesTest, RulesOfThumbLeaveFewerUnstableShapings) {
-  WEARKNIT_REQUIRE_SHARED(shared);
   Meshed with_rules;
-  with_rules.disc = shared_disc(shared, GetParam());
-  ASSERT_FALSE(with_rules.disc.faces.empty());
+  with_rules.disc = disc();
   with_rules.result = remesh_anisotropic(with_rules.disc, AnisoRemeshParams{});
   Meshed sizes_only;
   sizes_only.disc = with_rules.disc;
