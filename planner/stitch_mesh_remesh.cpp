@@ -2127,15 +2127,18 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   std::vector<std::pair<int, int>> order;
   for (const auto& [root, strip_loops] : loops) order.push_back({pieces.band[at(root)], root});
   std::sort(order.begin(), order.end());
-  std::vector<std::vector<Chain>> single_loops;
-  for (const auto& [band, root] : order) {
+  // Each strip's chains, made once (empty for a strip with a hole).
+  std::vector<std::vector<Chain>> strip_chains(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto& [band, root] = order[i];
     const std::vector<std::vector<int>>& strip_loops = loops[root];
     if (strip_loops.size() == 1) {
-      single_loops.push_back(builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris)));
+      strip_chains[i] = builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris));
     }
   }
-  for (auto it = single_loops.rbegin(); it != single_loops.rend(); ++it) builder.plan_minimums(*it);
-  for (const auto& [band, root] : order) {
+  for (auto it = strip_chains.rbegin(); it != strip_chains.rend(); ++it) builder.plan_minimums(*it);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto& [band, root] = order[i];
     const std::vector<std::vector<int>>& strip_loops = loops[root];
     ++builder.stats.strips;
     const std::string where =
@@ -2146,7 +2149,7 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
                                  "interior extremum)");
       continue;
     }
-    builder.strip(where, builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris)));
+    builder.strip(where, std::move(strip_chains[i]));
   }
   result.stats.rows = bands;
   result.stats.strips = builder.stats.strips;
