@@ -291,6 +291,8 @@ std::string merge_stitch_report(const std::string& dir, const StitchMeshReport& 
       {"lenses_glued", report.stats.lenses_skipped},
       {"bind_off_sides", report.stats.boundary_sides},
       {"sides_split_below", report.stats.sides_split_below},
+      {"straighten_fits", report.stats.straighten_fits},
+      {"label_deviation_deg", report.stats.label_deviation_deg},
       {"row_time_levelled", report.stats.row_time_levelled},
       {"tip_sides", report.stats.tip_sides},
       {"relax_sweeps", report.stats.relax_sweeps},

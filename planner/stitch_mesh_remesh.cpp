@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <optional>
 #include <queue>
@@ -129,9 +130,10 @@ std::array<Vec3, 3> hat_gradients(const LabelledDisc& disc, const Triangle& t) {
 }
 
 // Least-squares fit of t to the target gradients (Poisson equation with
-// the cotangent Laplacian), then straightening fits towards unit speed.
+// the cotangent Laplacian), then straightening fits towards unit speed
+// until t settles.
 Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
-                         const AnisoRemeshParams& params) {
+                         const AnisoRemeshParams& params, AnisoRemeshStats& stats) {
   const int n = static_cast<int>(disc.positions.size());
   std::vector<Eigen::Triplet<double>> entries;
   std::vector<std::array<Vec3, 3>> grads(tris.size());
@@ -165,7 +167,15 @@ Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
         rhs[tris[k].v[at(i)]] += tris[k].area * grads[k][at(i)].dot(target[k]);
       }
     }
+    const Eigen::VectorXd before = t;
     t = solver.solve(rhs);
+    stats.straighten_fits = iteration;
+    // t is in rows. The fixed point of the straightening (rows of unit
+    // height blended with the labels) is reached when no vertex moves by
+    // more than the tolerance; a shift of the whole of t does not count.
+    const Eigen::ArrayXd moved = (t - before).array();
+    const bool settled =
+        iteration > 0 && (moved - moved.mean()).abs().maxCoeff() < params.straighten_tolerance_rows;
     for (std::size_t k = 0; k < tris.size(); ++k) {
       Vec3 g = Vec3::Zero();
       for (int i = 0; i < 3; ++i) g += t[tris[k].v[at(i)]] * grads[k][at(i)];
@@ -176,7 +186,17 @@ Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
       if (g.norm() > 1e-12) d += g.normalized();
       if (d.norm() > 1e-12) target[k] = d.normalized() / params.wale_mm;
     }
+    if (settled) break;
   }
+  // How far the rows' wale direction strays from the labels, by area.
+  double angle_area = 0;
+  double area = 0;
+  for (const Triangle& tri : tris) {
+    if (tri.grad.norm() <= 1e-12 || tri.wale.norm() <= 1e-12) continue;
+    angle_area += tri.area * std::acos(std::clamp(tri.grad.normalized().dot(tri.wale), -1.0, 1.0));
+    area += tri.area;
+  }
+  stats.label_deviation_deg = area > 0 ? angle_area / area * 180.0 / std::numbers::pi : 0.0;
   t.array() -= t.minCoeff();
   return t;
 }
@@ -2047,7 +2067,7 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   }
   AnisoRemeshResult result;
   std::vector<Triangle> tris = triangulate(disc);
-  Eigen::VectorXd t = row_time(disc, tris, params);
+  Eigen::VectorXd t = row_time(disc, tris, params, result.stats);
   result.stats.solve_seconds = seconds_since(start);
   int bands = 1;
   Pieces pieces;

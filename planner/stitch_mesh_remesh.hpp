@@ -5,9 +5,9 @@
 // Method (docs/stitch-mesh.md has the pictures):
 //  1. §6.1 field: every input face gives a wale direction (its +v sides, and
 //     its +u sides turned a quarter turn); a scalar "row time" t is fitted to
-//     it in least squares (|grad t| = 1 / wale_mm), then straightened a few
-//     times towards unit speed so rows keep their height where the labels
-//     curl.
+//     it in least squares (|grad t| = 1 / wale_mm), then straightened
+//     towards unit speed until it settles, so rows keep their height where
+//     the labels curl.
 //  2. Rows: t is cut at K-1 levels placed by height (area over level-curve
 //     length per thin slab of t), so each band between levels is one row of
 //     height ~wale_mm even where t is flat. Each band component
@@ -56,7 +56,11 @@ std::vector<std::string> check_disc(const LabelledDisc& disc);
 struct AnisoRemeshParams {
   double course_mm = 42.0 / 40.0;
   double wale_mm = 115.0 / 40.0;
-  int straighten_iterations = 8;  // step 1: fits towards unit row speed
+  // Step 1: at most this many fits towards unit row speed after the fit to
+  // the labels; they stop once no vertex's row time moves by more than
+  // straighten_tolerance_rows (docs/stitch-mesh.md measures both).
+  int straighten_iterations = 100;
+  double straighten_tolerance_rows = 0.01;
   // Weight of the labelled direction against the fitted one in each
   // straightening fit (0: rows only keep their height).
   double label_weight = 0.1;
@@ -102,6 +106,10 @@ struct AnisoRemeshStats {
   // Vertices whose row time was levelled because the fitted one had an
   // interior extremum (a strip with a hole); 0 when it had none.
   int row_time_levelled = 0;
+  // Step 1: straightening fits made, and the mean angle (by area) between
+  // the rows' wale direction (grad t) and the labelled one, in degrees.
+  int straighten_fits = 0;
+  double label_deviation_deg = 0;
   // Step 5: sweeps made (fewer than asked once no vertex moves) and their time.
   int relax_sweeps = 0;
   double relax_seconds = 0;

@@ -33,8 +33,9 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
       "measured swatch STITCHESxROWS:WIDTHxHEIGHT_MM (the paper's seed swatch, §8.1)")(
       "stitch-mm", po::value<std::string>(&stitch_mm),
       "stitch size COURSExWALE in mm, instead of --swatch")(
-      "straighten", po::value<int>(&params.straighten_iterations)->default_value(8),
-      "fits of the row time towards unit row height after the fit to the labels")(
+      "straighten", po::value<int>(&params.straighten_iterations)->default_value(100),
+      "at most this many fits of the row time towards unit row height after the fit to the "
+      "labels; they stop once the row time moves less than 0.01 row")(
       "label-weight", po::value<double>(&params.label_weight)->default_value(0.1),
       "weight of the labelled wale direction in each straightening fit")(
       "pentagon-cost", po::value<double>(&params.pentagon_cost)->default_value(0.05),

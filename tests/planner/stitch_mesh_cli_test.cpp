@@ -40,6 +40,12 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
   EXPECT_EQ(s.at("boundary_loops"), 1);
   EXPECT_TRUE(s.at("row_time_levelled").is_number_integer());
   EXPECT_TRUE(s.at("tip_sides").is_number_integer());
+  // The straightening fits stop once the row time settles, and say how far
+  // the rows stray from the labels.
+  EXPECT_GE(s.at("straighten_fits").get<int>(), 1);
+  EXPECT_LT(s.at("straighten_fits").get<int>(), 100);
+  EXPECT_GE(s.at("label_deviation_deg").get<double>(), 0.0);
+  EXPECT_LT(s.at("label_deviation_deg").get<double>(), 90.0);
   // Stitches off the surface are counted, and warned about when there are any.
   EXPECT_DOUBLE_EQ(s.at("off_surface").at("tolerance_mm").get<double>(), 2.875);
   const auto off_faces = s.at("off_surface").at("faces").get<std::size_t>();
@@ -71,13 +77,15 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
       0);
 
   // --stitch-mm replaces the swatch; a run again replaces only its own member.
-  const auto again =
-      run_wearknit("stitch-mesh '" + dir.string() + "' --stitch-mm 2x3 -q --no-picture");
+  // --straighten caps the fits.
+  const auto again = run_wearknit("stitch-mesh '" + dir.string() +
+                                  "' --stitch-mm 2x3 --straighten 1 -q --no-picture");
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(again.out, "");
   const auto report2 = nlohmann::json::parse(read_file(dir / "report.json"));
   EXPECT_TRUE(report2.contains("cut_edges"));
   EXPECT_EQ(report2.at("stitch_mesh").at("gauge").at("course_mm"), 2.0);
+  EXPECT_EQ(report2.at("stitch_mesh").at("straighten_fits"), 1);
   EXPECT_LT(report2.at("stitch_mesh").at("faces").at("total").get<int>(),
             s.at("faces").at("total").get<int>());
 }
