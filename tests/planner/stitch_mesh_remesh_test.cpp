@@ -405,7 +405,7 @@ TEST(StitchMeshRemeshTest, RowTimeWithoutAnInteriorExtremumIsNotLevelled) {
   EXPECT_TRUE(result.problems.empty());
 }
 
-// A flat sector of a ring, course along the radii and wale round it, 3.5
+// A flat sector of a ring, course along the radii and wale round it, 3
 // times as far round at the outer arc as at the inner one: rows along the
 // radii would be that much taller outside. The straightening fits of step 1
 // run until the row time settles (48 fits here), leaning the rows off the
