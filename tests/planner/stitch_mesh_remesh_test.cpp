@@ -22,11 +22,13 @@ namespace {
 
 namespace sd = stitch_discs;
 
-// Everything issue 8 asks of a stitch mesh made from a disc of known area.
-void expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2,
-                             const AnisoRemeshParams& params, const std::string& name) {
+// Everything issue 8 asks of a stitch mesh made from a disc of known area;
+// returns the result for further checks.
+AnisoRemeshResult expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2,
+                                          const AnisoRemeshParams& params,
+                                          const std::string& name) {
   SCOPED_TRACE(name);
-  const AnisoRemeshResult result = remesh_anisotropic(disc, params);
+  AnisoRemeshResult result = remesh_anisotropic(disc, params);
   const StitchMesh& mesh = result.mesh;
   for (const std::string& p : result.problems) ADD_FAILURE() << p;
   EXPECT_TRUE(check(mesh).empty());
@@ -58,6 +60,7 @@ void expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2,
       f.course.mean_mm, f.course.within_15_percent, f.wale.mean_mm, f.wale.within_15_percent,
       result.stats.rows, result.stats.strips, result.stats.lenses_skipped,
       result.stats.total_seconds);
+  return result;
 }
 
 AnisoRemeshParams default_params() {
@@ -424,8 +427,8 @@ TEST(StitchMeshRemeshTest, StraighteningRunsUntilTheRowTimeSettles) {
   const double angle = 4.5;
   const LabelledDisc disc = ring_sector(r0, r1, angle);
   const AnisoRemeshParams params = default_params();
-  expect_good_stitch_mesh(disc, angle / 2 * (r1 * r1 - r0 * r0), params, "ring sector");
-  const AnisoRemeshResult settled = remesh_anisotropic(disc, params);
+  const AnisoRemeshResult settled =
+      expect_good_stitch_mesh(disc, angle / 2 * (r1 * r1 - r0 * r0), params, "ring sector");
   EXPECT_GT(settled.stats.straighten_fits, 8);
   EXPECT_LT(settled.stats.straighten_fits, params.straighten_iterations);
 

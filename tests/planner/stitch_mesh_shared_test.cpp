@@ -57,9 +57,9 @@ struct Limits {
 // Cut meshes that miss one of issue 8's figures (docs/stitch-mesh.md,
 // "Figures on the shared meshes", says which and why: the course share of
 // the mesh with the most boundary, and fans where the row time is flat).
-// Each is held to the figures it meets
-// and, on the rest, to a bound just past what it reaches now, so a change for the worse still
-// fails. The bounds of triangle inputs follow the cut stage's remesher.
+// Each is held to the figures it meets and, on the rest, to a bound just past
+// what it reaches now, so a change for the worse still fails. The bounds of
+// triangle inputs follow the cut stage's remesher.
 const std::map<std::string, Limits>& below_target() {
   // clang-format off
   static const std::map<std::string, Limits> limits = {
