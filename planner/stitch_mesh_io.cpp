@@ -288,6 +288,7 @@ std::string merge_stitch_report(const std::string& dir, const StitchMeshReport& 
         {"opposed_shaping", report.stability.opposed_shaping},
         {"one_stitch_rows", report.stability.one_stitch_rows}}},
       {"saddles_split", report.stats.saddles_split},
+      {"saddles_pinned", report.stats.saddles_pinned},
       {"lenses_glued", report.stats.lenses_skipped},
       {"bind_off_sides", report.stats.boundary_sides},
       {"sides_split_below", report.stats.sides_split_below},

@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -357,6 +358,118 @@ int level_interior_extrema(const LabelledDisc& disc, const std::vector<Triangle>
   return changed;
 }
 
+// Saddles on a level (step 2, docs/stitch-mesh.md "Saddles on a level").
+// Near a saddle of t the level curves form an X. A saddle inside a band
+// makes a strip with two bottom and two top chains, which split_folds can
+// only cut between corners of its chains, far from the saddle, so the
+// band's height there ends up in long wale sides; a saddle on the disc
+// boundary (half of one, where a cut runs through it, or a fold of the cut
+// across the rows) makes a strip whose bottom and top differ in length,
+// zipped with a fan of shaping. Held exactly on a level, the saddle is where
+// the level curve meets itself or the boundary: the bands on either side are
+// strips that meet at the saddle, and no strip needs to go round it.
+// The rows are raised or lowered round each saddle among `candidates` by a
+// bump, flat up to `inner_mm` from it and falling smoothly to nothing at
+// `outer_mm` (along the mesh's edges), so that the saddle's value is a
+// whole level; saddles already held stay where they are. A bump is not made
+// where it would turn a vertex inside the disc into an extremum, stop a held
+// saddle being one, or bring a neighbour of a held saddle onto its level.
+// Returns the level per vertex (-1 for none).
+std::vector<int> pin_saddles(const std::vector<Triangle>& tris, const std::vector<Vec3>& positions,
+                             Eigen::VectorXd& rows, int bands, double inner_mm, double outer_mm,
+                             const std::vector<bool>& candidates, int& pinned) {
+  const auto n = static_cast<std::size_t>(rows.size());
+  std::vector<int> pin(n, -1);
+  pinned = 0;
+  if (bands < 2 || !(outer_mm > inner_mm) || candidates.empty()) return pin;
+  std::vector<std::vector<std::pair<int, int>>> link(n);  // the side opposite v, per triangle
+  std::vector<std::vector<int>> adjacent(n);
+  std::unordered_map<std::uint64_t, int> uses;  // undirected edge -> triangles
+  for (const Triangle& tri : tris) {
+    for (int i = 0; i < 3; ++i) {
+      const int a = tri.v[at(i)];
+      const int b = tri.v[at((i + 1) % 3)];
+      link[at(a)].push_back({b, tri.v[at((i + 2) % 3)]});
+      if (uses[key(std::min(a, b), std::max(a, b))]++ == 0) {
+        adjacent[at(a)].push_back(b);
+        adjacent[at(b)].push_back(a);
+      }
+    }
+  }
+  std::vector<bool> boundary(n, false);
+  for (const auto& [edge, count] : uses) {
+    if (count == 1) {
+      boundary[at(static_cast<int>(edge >> 32))] = true;
+      boundary[at(static_cast<int>(edge & 0xffffffffU))] = true;
+    }
+  }
+  // Sign changes of the rows round v (ties broken by vertex index, as a
+  // hair's shift would): 2 at a regular inner vertex, 0 or 1 on the
+  // boundary; more at a saddle.
+  auto above = [&](int a, int v) { return rows[a] != rows[v] ? rows[a] > rows[v] : a > v; };
+  auto sign_changes = [&](int v) {
+    int changes = 0;
+    for (const auto& [a, b] : link[at(v)]) changes += above(a, v) != above(b, v) ? 1 : 0;
+    return changes;
+  };
+  auto is_saddle = [&](int v) { return sign_changes(v) >= (boundary[at(v)] ? 2 : 4); };
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  for (std::size_t v0 = 0; v0 < n; ++v0) {
+    const int s = static_cast<int>(v0);
+    const int k = static_cast<int>(std::lround(rows[s]));
+    if (!candidates[v0] || k < 1 || k >= bands || !is_saddle(s)) continue;
+    // Vertices within outer_mm along the edges; none held within inner_mm.
+    std::vector<int> reached;
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+    dist[at(s)] = 0;
+    queue.push({0.0, s});
+    bool clear = true;
+    while (!queue.empty()) {
+      const auto [d, v] = queue.top();
+      queue.pop();
+      if (d > dist[at(v)]) continue;
+      reached.push_back(v);
+      if (pin[at(v)] >= 0 && d < inner_mm) clear = false;
+      for (int w : adjacent[at(v)]) {
+        const double e = d + (positions[at(w)] - positions[at(v)]).norm();
+        if (e < outer_mm && e < dist[at(w)]) {
+          dist[at(w)] = e;
+          queue.push({e, w});
+        }
+      }
+    }
+    if (clear) {
+      const double delta = k - rows[s];
+      std::vector<double> before;
+      for (int v : reached) {
+        before.push_back(rows[v]);
+        if (pin[at(v)] >= 0) continue;
+        const double x = std::clamp((dist[at(v)] - inner_mm) / (outer_mm - inner_mm), 0.0, 1.0);
+        rows[v] += delta * (1 - x * x * (3 - 2 * x));
+      }
+      rows[s] = k;
+      pin[at(s)] = k;
+      bool ok = true;
+      for (int v : reached) {
+        if (pin[at(v)] >= 0) {
+          ok = ok && is_saddle(v);
+          for (int w : adjacent[at(v)]) ok = ok && std::abs(rows[w] - pin[at(v)]) > 1e-6;
+        }
+        for (int w : adjacent[at(v)]) ok = ok && (boundary[at(w)] || sign_changes(w) > 0);
+      }
+      if (ok) {
+        ++pinned;
+      } else {
+        pin[at(s)] = -1;
+        for (std::size_t i = 0; i < reached.size(); ++i) rows[reached[i]] = before[i];
+      }
+    }
+    for (int v : reached) dist[at(v)] = std::numeric_limits<double>::infinity();
+  }
+  return pin;
+}
+
 // ---------------------------------------------------------------------------
 // Step 2: pieces of triangles between consecutive levels.
 
@@ -371,12 +484,14 @@ struct Pieces {
   std::vector<int> source_side;  // ... and its side
   std::vector<int> twin;         // per half-edge, -1 if none
   std::vector<int> piece;        // per half-edge
+  std::vector<bool> pinned;      // per input vertex: a saddle of t held on a level
 
   int next(int h) const {
     const int p = piece[at(h)];
     return h + 1 < start[at(p) + 1] ? h + 1 : start[at(p)];
   }
   int to(int h) const { return from[at(next(h))]; }
+  bool is_pinned(int v) const { return at(v) < pinned.size() && pinned[at(v)]; }
   double length(int h) const { return (position[at(to(h))] - position[at(from[at(h)])]).norm(); }
 };
 
@@ -392,10 +507,16 @@ void link_twins(Pieces& out) {
   }
 }
 
+// `pin` holds, per input vertex, the level a saddle of t is held on (-1 for
+// none): such a vertex lies on its level, a corner of the pieces of both
+// bands, and the level curves through it meet there.
 Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const Eigen::VectorXd& t,
-             double spacing, int bands) {
+             double spacing, int bands, const std::vector<int>& pin) {
   Pieces out;
   out.position = disc.positions;
+  out.pinned.assign(disc.positions.size(), false);
+  for (std::size_t v = 0; v < pin.size(); ++v) out.pinned[v] = pin[v] >= 0;
+  auto pin_of = [&](int v) { return pin.empty() ? -1 : pin[at(v)]; };
   // Directed input edges that are sides of input faces on the boundary.
   std::unordered_map<std::uint64_t, std::pair<int, int>> directed;
   for (std::size_t f = 0; f < disc.faces.size(); ++f) {
@@ -410,12 +531,19 @@ Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const 
   for (int i = 0; i < t.size(); ++i) {
     double x = t[i] / spacing;
     const double nearest = std::round(x);
-    if (std::abs(x - nearest) < 1e-6) x = nearest + 2e-6;
+    if (pin_of(i) >= 0) {
+      x = pin_of(i);
+    } else if (std::abs(x - nearest) < 1e-6) {
+      x = nearest + 2e-6;
+    }
     value[at(i)] = x;
   }
   auto band_of = [&](double x) {
     return std::clamp(static_cast<int>(std::floor(x)), 0, bands - 1);
   };
+  // A pinned vertex on level k belongs to bands k - 1 and k.
+  auto lowest_band = [&](int v) { return pin_of(v) >= 0 ? pin_of(v) - 1 : band_of(value[at(v)]); };
+  auto highest_band = [&](int v) { return pin_of(v) >= 0 ? pin_of(v) : band_of(value[at(v)]); };
   std::map<std::tuple<int, int, int>, int> crossings;
   auto get_crossing = [&](int a, int b, int level) {
     const int lo = std::min(a, b);
@@ -430,33 +558,37 @@ Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const 
   };
   struct Corner {
     int vertex;
-    int edge;   // triangle side (0..2) of a crossing, -1 for an input vertex
-    int level;  // of a crossing
+    int edge;     // triangle side (0..2) of a crossing, -1 for an input vertex
+    int level;    // of a crossing or a pinned vertex
+    bool pinned;  // an input vertex on `level`
   };
   for (std::size_t k = 0; k < tris.size(); ++k) {
     const Triangle& tri = tris[k];
     int lo = bands;
     int hi = -1;
     for (int v : tri.v) {
-      lo = std::min(lo, band_of(value[at(v)]));
-      hi = std::max(hi, band_of(value[at(v)]));
+      lo = std::min(lo, lowest_band(v));
+      hi = std::max(hi, highest_band(v));
     }
     for (int b = lo; b <= hi; ++b) {
       std::vector<Corner> corners;
       for (int i = 0; i < 3; ++i) {
         const int p = tri.v[at(i)];
         const int q = tri.v[at((i + 1) % 3)];
-        if (band_of(value[at(p)]) == b) corners.push_back({p, -1, 0});
+        if (lowest_band(p) == b || highest_band(p) == b) {
+          corners.push_back({p, -1, pin_of(p), pin_of(p) >= 0});
+        }
         const double vp = value[at(p)];
         const double vq = value[at(q)];
-        // Levels b (bottom) and b + 1 (top) crossed by p -> q, in travel order.
+        // Levels b (bottom) and b + 1 (top) crossed by p -> q, in travel
+        // order (not the level of a pinned end: the curve passes through it).
         std::vector<int> levels;
         for (int level : {b, b + 1}) {
-          if (level <= 0 || level >= bands) continue;
+          if (level <= 0 || level >= bands || level == pin_of(p) || level == pin_of(q)) continue;
           if ((vp < level) != (vq < level)) levels.push_back(level);
         }
         if (levels.size() == 2 && vp > vq) std::swap(levels[0], levels[1]);
-        for (int level : levels) corners.push_back({get_crossing(p, q, level), i, level});
+        for (int level : levels) corners.push_back({get_crossing(p, q, level), i, level, false});
       }
       if (corners.size() < 3) continue;
       const int piece = static_cast<int>(out.band.size());
@@ -469,7 +601,10 @@ Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const 
         out.piece.push_back(piece);
         int level = -1;
         int side = -1;  // triangle side the half-edge lies on
-        if (a.edge >= 0 && z.edge >= 0 && a.edge != z.edge && a.level == z.level) {
+        const bool a_on = a.edge >= 0 || a.pinned;
+        const bool z_on = z.edge >= 0 || z.pinned;
+        if (a_on && z_on && a.level == z.level && !(a.pinned && z.pinned) &&
+            (a.pinned || z.pinned || a.edge != z.edge)) {
           level = a.level;
         } else if (a.edge >= 0) {
           side = a.edge;
@@ -533,6 +668,7 @@ Pieces split_halfedges(const Pieces& in, std::vector<HalfedgeSplit> splits) {
   out.position = in.position;
   out.band = in.band;
   out.tri = in.tri;
+  out.pinned = in.pinned;
   out.start.assign(1, 0);
   std::size_t next_split = 0;
   for (std::size_t p = 0; p + 1 < in.start.size(); ++p) {
@@ -574,6 +710,15 @@ int find(std::vector<int>& parent, int x) {
 // same stitch meshes on the 38 shared meshes (docs/stitch-mesh.md, "Saddle
 // splits").
 constexpr double kSplitBalance = 2.0;
+
+// Saddles on a level (pin_saddles) are looked for in X-shaped strips and in
+// strips whose bottom and top chains differ in length by more than this
+// ratio, the longer at least kLopsidedWales wales long. 1.3 to 1.5 and 10
+// to 20 wales gave 37 of the 38 shared meshes meeting every figure of issue
+// 8; without the length, jagged cut boundaries lost stitches' shape
+// (docs/stitch-mesh.md, "Saddles on a level").
+constexpr double kLopsidedRatio = 1.3;
+constexpr double kLopsidedWales = 20.0;
 
 enum class Side : std::uint8_t { Low, High, Wale };
 
@@ -954,7 +1099,11 @@ struct Builder {
                      : c < -params.side_cosine ? Side::Low
                                                : Side::Wale;
       }
-      if (!runs.empty() && runs.back().level == piece.level && runs.back().side == piece.side) {
+      // A level curve through a pinned saddle is two runs there, so the
+      // saddle is a stitch vertex of both (it is where four runs meet).
+      const bool breaks = piece.level && pieces.is_pinned(pieces.from[at(h)]);
+      if (!runs.empty() && runs.back().level == piece.level && runs.back().side == piece.side &&
+          !breaks) {
         runs.back().halfedges.push_back(h);
         runs.back().length += length;
       } else {
@@ -964,7 +1113,9 @@ struct Builder {
       }
     }
     if (runs.size() > 1 && runs.front().level == runs.back().level &&
-        runs.front().side == runs.back().side) {
+        runs.front().side == runs.back().side &&
+        !(runs.front().level &&
+          pieces.is_pinned(pieces.from[at(runs.front().halfedges.front())]))) {
       runs.back().halfedges.insert(runs.back().halfedges.end(), runs.front().halfedges.begin(),
                                    runs.front().halfedges.end());
       runs.back().length += runs.front().length;
@@ -2110,17 +2261,58 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
       loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
     }
   };
-  auto make_strips = [&] {
-    const Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
-    pieces = slice(disc, tris, rows, 1.0, bands);
+  auto make_strips = [&](const std::vector<bool>& candidates) {
+    Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
+    const std::vector<int> pin =
+        pin_saddles(tris, disc.positions, rows, bands, 0.4 * params.saddle_wales * params.wale_mm,
+                    params.saddle_wales * params.wale_mm, candidates, result.stats.saddles_pinned);
+    pieces = slice(disc, tris, rows, 1.0, bands, pin);
     find_strips();
   };
-  make_strips();
-  const bool has_hole = std::any_of(loops.begin(), loops.end(),
-                                    [](const auto& entry) { return entry.second.size() > 1; });
-  if (has_hole) {
+  make_strips({});
+  auto has_hole = [&] {
+    return std::any_of(loops.begin(), loops.end(),
+                       [](const auto& entry) { return entry.second.size() > 1; });
+  };
+  if (has_hole()) {
     result.stats.row_time_levelled = level_interior_extrema(disc, tris, t);
-    make_strips();
+    make_strips({});
+  }
+  // Saddles on a level: those among the vertices of strips with two bottom
+  // and two top chains, or whose bottom and top differ in length by more
+  // than kLopsidedRatio, are held on a level and the rows are made again.
+  if (params.saddle_wales > 0) {
+    std::set<int> roots;
+    Builder probe{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+    for (const auto& [root, strip_loops] : loops) {
+      if (strip_loops.size() != 1) continue;
+      int lows = 0;
+      int highs = 0;
+      double bottom = 0;
+      double top = 0;
+      for (const Chain& c :
+           probe.chains(probe.loop_runs(strip_loops.front(), pieces.band[at(root)], t, tris))) {
+        lows += c.side == Side::Low ? 1 : 0;
+        highs += c.side == Side::High ? 1 : 0;
+        if (c.side != Side::Wale) (c.side == Side::Low ? bottom : top) += chain_length(c);
+      }
+      const bool x_shaped = lows >= 2 && lows == highs;
+      const bool lopsided = bottom > 0 && top > 0 &&
+                            std::abs(std::log(bottom / top)) > std::log(kLopsidedRatio) &&
+                            std::max(bottom, top) >= kLopsidedWales * params.wale_mm;
+      if (x_shaped || lopsided) roots.insert(root);
+    }
+    if (!roots.empty()) {
+      std::vector<bool> candidates(disc.positions.size(), false);
+      for (std::size_t p = 0; p < pieces.band.size(); ++p) {
+        if (roots.count(find(parent, static_cast<int>(p))) == 0) continue;
+        for (int v : tris[at(pieces.tri[p])].v) candidates[at(v)] = true;
+      }
+      make_strips(candidates);
+      // Held saddles make no extremum, so no strip with a hole; should one
+      // appear all the same, the rows are made as before.
+      if (has_hole()) make_strips({});
+    }
   }
   // Row ends: the boundary points 0.9 wale (`tip_side_wales`) from where a row's chains meet
   // become piece vertices, so those rows can end in a wale side there.

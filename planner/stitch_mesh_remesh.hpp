@@ -83,6 +83,10 @@ struct AnisoRemeshParams {
   // boundary crosses the rows obliquely) ends instead in a wale side this
   // many wales long, cut from the boundary there (0: rows end in a point).
   double tip_side_wales = 0.9;
+  // Step 2: saddles of the row time in X-shaped or lopsided strips are held
+  // on a level by a bump of the rows this many wales across (flat for the
+  // first 0.4 of it); 0 leaves them where the fit put them.
+  double saddle_wales = 5.0;
   // Step 5: at most this many sweeps moving the inner stitch vertices over
   // the surface so the sides come closer to their target lengths (0: as
   // zipped). docs/stitch-mesh.md measures the count.
@@ -94,6 +98,7 @@ struct AnisoRemeshStats {
   int strips = 0;          // band components
   int lenses_skipped = 0;  // strips of one side on each chain (nothing between them)
   int saddles_split = 0;   // X-shaped strips around a saddle of the row time, split in two
+  int saddles_pinned = 0;  // saddles of the row time held on a level
   int invalid_faces = 0;   // faces the zip could not make valid (see problems)
   // Bind-off boundary stretches at a top chain's end made wale sides, because
   // the row below could not feed that many stitches.

@@ -47,6 +47,9 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
       "row-end-wales", po::value<double>(&params.tip_side_wales)->default_value(0.9),
       "a row that meets an oblique boundary in a point ends in a wale side this many wales "
       "long instead; 0 keeps the point")(
+      "saddle-wales", po::value<double>(&params.saddle_wales)->default_value(5.0),
+      "hold the row time's saddles where rows would go round them on a level, moving the rows "
+      "within this many wales of each; 0 leaves them")(
       "relax", po::value<int>(&params.relax_sweeps)->default_value(150),
       "at most this many sweeps moving the inner stitch vertices over the surface "
       "towards their sides' target lengths; 0 keeps them as zipped")("no-picture",
@@ -74,13 +77,13 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
     problem = planner::parse_swatch(swatch, gauge);
   }
   if (problem.empty()) problem = planner::check_gauge(gauge);
-  if (problem.empty() &&
-      (params.straighten_iterations < 0 || !(params.label_weight >= 0) ||
-       !(params.pentagon_cost >= 0) || !(params.stability_cost >= 0) ||
-       !(params.outside_cost >= 0) || !(params.tip_side_wales >= 0) || params.relax_sweeps < 0)) {
+  if (problem.empty() && (params.straighten_iterations < 0 || !(params.label_weight >= 0) ||
+                          !(params.pentagon_cost >= 0) || !(params.stability_cost >= 0) ||
+                          !(params.outside_cost >= 0) || !(params.tip_side_wales >= 0) ||
+                          params.relax_sweeps < 0 || !(params.saddle_wales >= 0))) {
     problem =
         "--straighten, --label-weight, --pentagon-cost, --stability-cost, --outside-cost, "
-        "--row-end-wales and --relax must not be negative";
+        "--row-end-wales, --saddle-wales and --relax must not be negative";
   }
   if (!problem.empty()) {
     context.err << "wearknit stitch-mesh: " << problem << "\n";

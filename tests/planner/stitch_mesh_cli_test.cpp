@@ -104,13 +104,13 @@ TEST(StitchMeshCliTest, RejectsBadGaugeOptions) {
   r = run_wearknit("stitch-mesh '" + dir.string() + "' --gauge 0");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "wearknit stitch-mesh: the gauge (needles per inch) must be positive\n");
-  for (const char* option : {"--row-end-wales -1", "--relax -1"}) {
+  for (const char* option : {"--row-end-wales -1", "--relax -1", "--saddle-wales -1"}) {
     r = run_wearknit("stitch-mesh '" + dir.string() + "' " + option);
     EXPECT_EQ(r.exit_code, 2) << option;
     EXPECT_EQ(r.err,
               "wearknit stitch-mesh: --straighten, --label-weight, --pentagon-cost, "
-              "--stability-cost, --outside-cost, --row-end-wales and --relax must not be "
-              "negative\n")
+              "--stability-cost, --outside-cost, --row-end-wales, --saddle-wales and --relax "
+              "must not be negative\n")
         << option;
   }
 }
