@@ -281,32 +281,48 @@ Eigen::VectorXd row_levels(const LabelledDisc& disc, const std::vector<Triangle>
 // priority flood from the boundary, alternated until neither changes t).
 // Then every component of {t < c} and of {t > c} reaches the boundary, so
 // no band has a hole. Returns how many vertices changed.
-int level_interior_extrema(const LabelledDisc& disc, const std::vector<Triangle>& tris,
-                           Eigen::VectorXd& t) {
-  const auto n = static_cast<std::size_t>(t.size());
+// The vertices joined to each vertex by a side of the triangles.
+std::vector<std::vector<int>> vertex_neighbours(const std::vector<Triangle>& tris, std::size_t n) {
   std::vector<std::vector<int>> adjacent(n);
+  std::unordered_set<std::uint64_t> seen;
   for (const Triangle& tri : tris) {
     for (int i = 0; i < 3; ++i) {
-      adjacent[at(tri.v[at(i)])].push_back(tri.v[at((i + 1) % 3)]);
-      adjacent[at(tri.v[at((i + 1) % 3)])].push_back(tri.v[at(i)]);
+      const int a = tri.v[at(i)];
+      const int b = tri.v[at((i + 1) % 3)];
+      if (!seen.insert(key(std::min(a, b), std::max(a, b))).second) continue;
+      adjacent[at(a)].push_back(b);
+      adjacent[at(b)].push_back(a);
     }
   }
+  return adjacent;
+}
+
+// Per vertex of the disc: whether it lies on the disc boundary.
+std::vector<bool> on_disc_boundary(const LabelledDisc& disc) {
   std::unordered_set<std::uint64_t> sides;
   for (const std::vector<int>& face : disc.faces) {
     for (std::size_t i = 0; i < face.size(); ++i)
       sides.insert(key(face[i], face[(i + 1) % face.size()]));
   }
+  std::vector<bool> on(disc.positions.size(), false);
+  for (const std::vector<int>& face : disc.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const int a = face[i];
+      const int b = face[(i + 1) % face.size()];
+      if (sides.count(key(b, a))) continue;
+      on[at(a)] = on[at(b)] = true;
+    }
+  }
+  return on;
+}
+
+int level_interior_extrema(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                           Eigen::VectorXd& t) {
+  const auto n = static_cast<std::size_t>(t.size());
+  const std::vector<std::vector<int>> adjacent = vertex_neighbours(tris, n);
   std::vector<int> boundary;
   {
-    std::vector<bool> on(n, false);
-    for (const std::vector<int>& face : disc.faces) {
-      for (std::size_t i = 0; i < face.size(); ++i) {
-        const int a = face[i];
-        const int b = face[(i + 1) % face.size()];
-        if (sides.count(key(b, a))) continue;
-        on[at(a)] = on[at(b)] = true;
-      }
-    }
+    const std::vector<bool> on = on_disc_boundary(disc);
     for (std::size_t v = 0; v < n; ++v) {
       if (on[v]) boundary.push_back(static_cast<int>(v));
     }
@@ -375,34 +391,22 @@ int level_interior_extrema(const LabelledDisc& disc, const std::vector<Triangle>
 // where it would turn a vertex inside the disc into an extremum, stop a held
 // saddle being one, or bring a neighbour of a held saddle onto its level.
 // Returns the level per vertex (-1 for none).
-std::vector<int> pin_saddles(const std::vector<Triangle>& tris, const std::vector<Vec3>& positions,
+std::vector<int> pin_saddles(const LabelledDisc& disc, const std::vector<Triangle>& tris,
                              Eigen::VectorXd& rows, int bands, double inner_mm, double outer_mm,
                              const std::vector<bool>& candidates, int& pinned) {
   const auto n = static_cast<std::size_t>(rows.size());
   std::vector<int> pin(n, -1);
   pinned = 0;
   if (bands < 2 || !(outer_mm > inner_mm) || candidates.empty()) return pin;
+  const std::vector<Vec3>& positions = disc.positions;
   std::vector<std::vector<std::pair<int, int>>> link(n);  // the side opposite v, per triangle
-  std::vector<std::vector<int>> adjacent(n);
-  std::unordered_map<std::uint64_t, int> uses;  // undirected edge -> triangles
   for (const Triangle& tri : tris) {
     for (int i = 0; i < 3; ++i) {
-      const int a = tri.v[at(i)];
-      const int b = tri.v[at((i + 1) % 3)];
-      link[at(a)].push_back({b, tri.v[at((i + 2) % 3)]});
-      if (uses[key(std::min(a, b), std::max(a, b))]++ == 0) {
-        adjacent[at(a)].push_back(b);
-        adjacent[at(b)].push_back(a);
-      }
+      link[at(tri.v[at(i)])].push_back({tri.v[at((i + 1) % 3)], tri.v[at((i + 2) % 3)]});
     }
   }
-  std::vector<bool> boundary(n, false);
-  for (const auto& [edge, count] : uses) {
-    if (count == 1) {
-      boundary[at(static_cast<int>(edge >> 32))] = true;
-      boundary[at(static_cast<int>(edge & 0xffffffffU))] = true;
-    }
-  }
+  const std::vector<std::vector<int>> adjacent = vertex_neighbours(tris, n);
+  const std::vector<bool> boundary = on_disc_boundary(disc);
   // Sign changes of the rows round v (ties broken by vertex index, as a
   // hair's shift would): 2 at a regular inner vertex, 0 or 1 on the
   // boundary; more at a saddle.
@@ -2264,7 +2268,7 @@ AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemesh
   auto make_strips = [&](const std::vector<bool>& candidates) {
     Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
     const std::vector<int> pin =
-        pin_saddles(tris, disc.positions, rows, bands, 0.4 * params.saddle_wales * params.wale_mm,
+        pin_saddles(disc, tris, rows, bands, 0.4 * params.saddle_wales * params.wale_mm,
                     params.saddle_wales * params.wale_mm, candidates, result.stats.saddles_pinned);
     pieces = slice(disc, tris, rows, 1.0, bands, pin);
     find_strips();
