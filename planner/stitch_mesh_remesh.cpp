@@ -724,6 +724,14 @@ constexpr double kSplitBalance = 2.0;
 constexpr double kLopsidedRatio = 1.3;
 constexpr double kLopsidedWales = 20.0;
 
+// Issue 8 counts sides within 15% of their target length. A boundary run's
+// sides are placed so that fewest fall outside (each costs this much more
+// than its squared relative error): with 1, 0.05 (the zip's outside_cost) or
+// points every course / 8, 16 or 32, all 38 shared meshes met every figure
+// (docs/stitch-mesh.md, step 3).
+constexpr double kLengthTolerance = 0.15;
+constexpr double kBoundaryOutsideCost = 1.0;
+
 enum class Side : std::uint8_t { Low, High, Wale };
 
 struct Run {
@@ -807,8 +815,7 @@ struct Builder {
   // (docs/stitch-mesh.md, step 3).
   double straight_length(const Run& run) const {
     const std::vector<double> along = lengths_along(run.halfedges);
-    const std::vector<double> walk =
-        straight_walk(run.halfedges, along, params.course_mm, std::numeric_limits<int>::max());
+    const std::vector<double> walk = straight_walk(run.halfedges, along, params.course_mm);
     const Vec3 last = walk.empty() ? pieces.position[at(pieces.from[at(run.halfedges.front())])]
                                    : point_along(run.halfedges, along, walk.back());
     const Vec3 end = pieces.position[at(pieces.to(run.halfedges.back()))];
@@ -841,17 +848,16 @@ struct Builder {
   }
 
   // Arc lengths of the points of a walk along a polyline that steps `step`
-  // in a straight line each time from its start, at most `limit` of them.
+  // in a straight line each time from its start.
   std::vector<double> straight_walk(const std::vector<int>& halfedges,
-                                    const std::vector<double>& along, double step,
-                                    int limit) const {
+                                    const std::vector<double>& along, double step) const {
     std::vector<double> out;
     Vec3 last = pieces.position[at(pieces.from[at(halfedges.front())])];
-    for (std::size_t k = 0; k < halfedges.size() && static_cast<int>(out.size()) < limit; ++k) {
+    for (std::size_t k = 0; k < halfedges.size(); ++k) {
       const Vec3 a = pieces.position[at(pieces.from[at(halfedges[k])])];
       const Vec3 e = pieces.position[at(pieces.to(halfedges[k]))] - a;
       double from = 0;
-      while (static_cast<int>(out.size()) < limit) {
+      while (true) {
         // The farther point of this half-edge `step` from the last one.
         const std::optional<double> exit = sphere_exit(a, e, last, step);
         if (!exit) break;
@@ -865,9 +871,72 @@ struct Builder {
     return out;
   }
 
+  // Arc lengths of the n - 1 inner points of a boundary run cut into n
+  // straight sides as close to course_mm as can be: fewest sides off by more
+  // than 15%, then the least squared relative deviation (dynamic programming
+  // over points every course_mm / 16 along the run). A jagged or folded cut
+  // boundary is longer along its edges than across the stitches it holds:
+  // the sides are its chords (docs/stitch-mesh.md, step 3).
+  std::vector<double> straight_sides(const std::vector<int>& halfedges,
+                                     const std::vector<double>& along, int n) const {
+    const double spacing = params.course_mm / 16;
+    std::vector<Vec3> point;
+    std::vector<double> arc;
+    for (std::size_t k = 0; k < halfedges.size(); ++k) {
+      const Vec3 a = pieces.position[at(pieces.from[at(halfedges[k])])];
+      const Vec3 b = pieces.position[at(pieces.to(halfedges[k]))];
+      const int parts =
+          std::max(1, static_cast<int>(std::ceil((along[k + 1] - along[k]) / spacing)));
+      for (int i = 0; i < parts; ++i) {
+        const double w = static_cast<double>(i) / parts;
+        point.push_back((1 - w) * a + w * b);
+        arc.push_back(along[k] + w * (along[k + 1] - along[k]));
+      }
+    }
+    point.push_back(pieces.position[at(pieces.to(halfedges.back()))]);
+    arc.push_back(along.back());
+    const std::size_t m = point.size();
+    // A side spans at most this much of the run's length.
+    const double reach = 3 * std::max(params.course_mm, along.back() / n);
+    auto cost = [&](const Vec3& a, const Vec3& b) {
+      const double off = (a - b).norm() / params.course_mm - 1;
+      return (std::abs(off) > kLengthTolerance ? kBoundaryOutsideCost : 0.0) + off * off;
+    };
+    constexpr double kNone = std::numeric_limits<double>::infinity();
+    std::vector<double> previous(m, kNone);
+    std::vector<double> current(m, kNone);
+    std::vector<std::uint32_t> from(static_cast<std::size_t>(n) * m, 0);
+    previous[0] = 0;
+    for (int k = 1; k <= n; ++k) {
+      std::fill(current.begin(), current.end(), kNone);
+      std::size_t first = 0;
+      for (std::size_t j = 1; j < m; ++j) {
+        while (arc[j] - arc[first] > reach) ++first;
+        for (std::size_t i = first; i < j; ++i) {
+          if (previous[i] == kNone) continue;
+          const double c = previous[i] + cost(point[i], point[j]);
+          if (c < current[j]) {
+            current[j] = c;
+            from[static_cast<std::size_t>(k - 1) * m + j] = static_cast<std::uint32_t>(i);
+          }
+        }
+      }
+      std::swap(previous, current);
+    }
+    if (previous[m - 1] == kNone) return {};
+    std::vector<double> out(static_cast<std::size_t>(n - 1));
+    std::size_t j = m - 1;
+    for (int k = n; k > 1; --k) {
+      j = from[static_cast<std::size_t>(k - 1) * m + j];
+      out[at(k - 2)] = arc[j];
+    }
+    return out;
+  }
+
   // Stitch vertices along a run, n segments (arcs[i] for segment i): evenly
-  // along it, or with `straight` (a boundary run) in n equal straight steps,
-  // so the stitches along a jagged boundary are as wide as the others.
+  // along it, or with `straight` (a boundary run) in n straight sides as
+  // close to course_mm as can be (straight_sides), so the stitches along a
+  // jagged boundary are as wide as the others.
   std::vector<int> sample(const std::vector<int>& halfedges, std::vector<std::int32_t>* arcs, int n,
                           bool straight = false) {
     const std::vector<double> along = lengths_along(halfedges);
@@ -875,23 +944,8 @@ struct Builder {
     std::vector<double> at_length;
     for (int i = 1; i < n; ++i) at_length.push_back(total * i / n);
     if (straight && n > 1) {
-      // The step whose walk of n - 1 steps ends one step from the run's end.
-      const Vec3 end = pieces.position[at(pieces.to(halfedges.back()))];
-      double lo = 0;
-      double hi = 2 * total / n;
-      std::vector<double> best;
-      for (int iteration = 0; iteration < 40; ++iteration) {
-        const double step = 0.5 * (lo + hi);
-        std::vector<double> walk = straight_walk(halfedges, along, step, n - 1);
-        if (static_cast<int>(walk.size()) < n - 1) {
-          hi = step;
-          continue;
-        }
-        const bool short_of_end = (end - point_along(halfedges, along, walk.back())).norm() > step;
-        best = std::move(walk);
-        (short_of_end ? lo : hi) = step;
-      }
-      if (static_cast<int>(best.size()) == n - 1) at_length = std::move(best);
+      std::vector<double> sides = straight_sides(halfedges, along, n);
+      if (!sides.empty()) at_length = std::move(sides);
     }
     std::vector<int> out{stitch_vertex(pieces.from[at(halfedges.front())])};
     for (int i = 1; i <= n; ++i) {
@@ -1405,7 +1459,7 @@ struct Builder {
       const double d = (len - params.wale_mm) / params.wale_mm;
       // Issue 8 counts wale sides within 15% of the target: one outside
       // costs a step more than its squared error.
-      return d * d + (std::abs(d) > 0.15 ? params.outside_cost : 0.0);
+      return d * d + (std::abs(d) > kLengthTolerance ? params.outside_cost : 0.0);
     };
     // Fig. 7 rules of thumb as costs (docs/stitch-mesh.md): no increase or
     // decrease at a row's end on the boundary, none on a bottom side made by

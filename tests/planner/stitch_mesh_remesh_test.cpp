@@ -199,7 +199,7 @@ double boundary_course_share(const StitchMesh& mesh) {
 
 // A rectangle whose top edge zig-zags 0.9 mm up and down every 1 mm (a cut
 // along a jagged edge path): 35% longer along its edges than across. The
-// bind-off stitches there are spaced in straight steps of one course, so
+// bind-off stitches there are chords of one course, so
 // they are as wide as the others (spaced along the edges, they would be a
 // quarter narrower, all outside 15%).
 TEST(StitchMeshRemeshTest, StitchesAlongAJaggedBoundaryKeepTheirWidth) {
@@ -213,6 +213,27 @@ TEST(StitchMeshRemeshTest, StitchesAlongAJaggedBoundaryKeepTheirWidth) {
   const double share = boundary_course_share(result.mesh);
   std::printf("[jagged] boundary course sides within 15%%: %.3f\n", share);
   EXPECT_GE(share, 0.9);
+}
+
+// A sheet whose top edge rises 10 mm over its 60 mm and zig-zags up to
+// 2 mm at irregular points 0.5 mm apart. The rows meet it obliquely, so each
+// row holds a short stretch of it that crosses the row's level curves back
+// and forth. Its course sides are placed as the chords closest to one course
+// (the fewest outside 15%): 77% are within 15%, where equal straight steps
+// from one end of each stretch, used before, left 61%.
+TEST(StitchMeshRemeshTest, CourseSidesAlongAnObliqueJaggedBoundaryAreChordsOfOneCourse) {
+  const int columns = 120;
+  const LabelledDisc disc = sd::grid_disc(columns, 20, [&](double s, double t) {
+    const int column = static_cast<int>(std::lround(s * columns));
+    const double hash = std::sin(column * 12.9898) * 43758.5453;
+    const double zig = t > 0.999 ? 2.0 * (hash - std::floor(hash)) : 0.0;
+    return Eigen::Vector3d(60 * s, 30 * t + zig + 10 * s * t, 0.0);
+  });
+  const AnisoRemeshResult result = remesh_anisotropic(disc, default_params());
+  EXPECT_TRUE(result.problems.empty());
+  const double share = boundary_course_share(result.mesh);
+  std::printf("[oblique jagged] boundary course sides within 15%%: %.3f\n", share);
+  EXPECT_GE(share, 0.72);
 }
 
 // A U of 10 mm squares in the plane z = 0 (three along the bottom, two up

@@ -56,21 +56,6 @@ struct Limits {
   double stitches = 0.10;     // |stitches / (area / (course x wale)) - 1| at most
 };
 
-// Cut meshes that miss one of issue 8's figures (docs/stitch-mesh.md,
-// "Figures on the shared meshes", says which and why: the course share of
-// the mesh with the most boundary).
-// Each is held to the figures it meets and, on the rest, to a bound just past
-// what it reaches now, so a change for the worse still fails. The bounds of
-// triangle inputs follow the cut stage's remesher.
-const std::map<std::string, Limits>& below_target() {
-  // clang-format off
-  static const std::map<std::string, Limits> limits = {
-      {"armadillo-qd", {.within = 0.85}},
-  };
-  // clang-format on
-  return limits;
-}
-
 struct Meshed {
   LabelledDisc disc;
   AnisoRemeshResult result;
@@ -189,9 +174,6 @@ TEST(StitchMeshSharedListTest, ListsEveryMesh) {
     if (entry.path().extension() == ".obj") on_disk.insert(entry.path().stem().string());
   }
   EXPECT_EQ(on_disk, std::set<std::string>(kMeshes.begin(), kMeshes.end()));
-  for (const auto& [name, limits] : below_target()) {
-    EXPECT_EQ(on_disk.count(name), 1U) << name;
-  }
 }
 
 // The cut mesh of the shared mesh named by the parameter, or a skip that
@@ -219,8 +201,7 @@ TEST_P(StitchMeshSharedTest, IsAValidDiscOfTheIssueSizes) {
   m.disc = disc();
   m.result = remesh_anisotropic(m.disc, AnisoRemeshParams{});
   expect_valid(m);
-  auto it = below_target().find(GetParam());
-  expect_sizes(m, it == below_target().end() ? Limits{} : it->second);
+  expect_sizes(m, Limits{});
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedTest, ::testing::ValuesIn(kMeshes), test_name);
