@@ -732,6 +732,12 @@ constexpr double kLopsidedWales = 20.0;
 constexpr double kLengthTolerance = 0.15;
 constexpr double kBoundaryOutsideCost = 1.0;
 
+// The cost of a side whose length is off its target by the fraction `off`:
+// its square, and `outside` more if it is over kLengthTolerance.
+double length_cost(double off, double outside) {
+  return off * off + (std::abs(off) > kLengthTolerance ? outside : 0.0);
+}
+
 enum class Side : std::uint8_t { Low, High, Wale };
 
 struct Run {
@@ -899,8 +905,7 @@ struct Builder {
     // A side spans at most this much of the run's length.
     const double reach = 3 * std::max(params.course_mm, along.back() / n);
     auto cost = [&](const Vec3& a, const Vec3& b) {
-      const double off = (a - b).norm() / params.course_mm - 1;
-      return (std::abs(off) > kLengthTolerance ? kBoundaryOutsideCost : 0.0) + off * off;
+      return length_cost((a - b).norm() / params.course_mm - 1, kBoundaryOutsideCost);
     };
     constexpr double kNone = std::numeric_limits<double>::infinity();
     std::vector<double> previous(m, kNone);
@@ -1456,10 +1461,9 @@ struct Builder {
     auto wale_cost = [&](int i, int j) {
       const double len =
           (mesh.positions[at(l[at(i0 + i)])] - mesh.positions[at(t[at(j0 + j)])]).norm();
-      const double d = (len - params.wale_mm) / params.wale_mm;
       // Issue 8 counts wale sides within 15% of the target: one outside
       // costs a step more than its squared error.
-      return d * d + (std::abs(d) > kLengthTolerance ? params.outside_cost : 0.0);
+      return length_cost((len - params.wale_mm) / params.wale_mm, params.outside_cost);
     };
     // Fig. 7 rules of thumb as costs (docs/stitch-mesh.md): no increase or
     // decrease at a row's end on the boundary, none on a bottom side made by
@@ -2450,7 +2454,7 @@ EdgeLengthStats length_stats(const std::vector<double>& lengths, double target) 
   s.mean_mm =
       std::accumulate(lengths.begin(), lengths.end(), 0.0) / static_cast<double>(lengths.size());
   int within = 0;
-  for (double x : lengths) within += std::abs(x - target) <= 0.15 * target;
+  for (double x : lengths) within += std::abs(x - target) <= kLengthTolerance * target;
   s.within_15_percent = static_cast<double>(within) / static_cast<double>(lengths.size());
   return s;
 }
