@@ -9,8 +9,8 @@
 #include <iostream>
 #include <memory>
 
-#include "planner/wearability.hpp"
-#include "planner/wearability_io.hpp"
+#include "planner/wearability/wearability.hpp"
+#include "planner/wearability/wearability_io.hpp"
 
 namespace {
 

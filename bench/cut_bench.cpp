@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "planner/cut.hpp"
-#include "planner/mesh_io.hpp"
-#include "planner/proxy.hpp"
+#include "planner/cut/cut.hpp"
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/proxy/proxy.hpp"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include <set>
 #include <string>
 
-#include "planner/wearability_io.hpp"
+#include "planner/wearability/wearability_io.hpp"
 
 int main(int argc, char** argv) {
   if (argc < 3) {

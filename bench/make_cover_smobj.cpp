@@ -4,7 +4,7 @@
 #include <iostream>
 
 #include "knitout/output_file.hpp"
-#include "planner/stitch_mesh.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
 #include "tests/planner/schedule_fixtures.hpp"
 
 int main(int argc, char** argv) {

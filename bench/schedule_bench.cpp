@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "knitout/output_file.hpp"
-#include "planner/knitout_emit.hpp"
+#include "planner/schedule/knitout_emit.hpp"
 #include "tests/planner/schedule_fixtures.hpp"
 
 namespace {

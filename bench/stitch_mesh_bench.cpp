@@ -7,9 +7,9 @@
 #include <string>
 
 #include "knitout/diagnostic.hpp"
-#include "planner/cut_io.hpp"
-#include "planner/stitch_mesh_io.hpp"
-#include "planner/stitch_mesh_remesh.hpp"
+#include "planner/cut/cut_io.hpp"
+#include "planner/stitch_mesh/stitch_mesh_io.hpp"
+#include "planner/stitch_mesh/stitch_mesher.hpp"
 
 namespace {
 

@@ -21,9 +21,9 @@
 #include <thread>
 #include <vector>
 
-#include "planner/wearability.hpp"
-#include "planner/wearability_io.hpp"
-#include "planner/wearability_recut.hpp"
+#include "planner/wearability/recut.hpp"
+#include "planner/wearability/wearability.hpp"
+#include "planner/wearability/wearability_io.hpp"
 
 namespace {
 

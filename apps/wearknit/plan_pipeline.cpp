@@ -12,8 +12,8 @@
 #include <thread>
 
 #include "knitout/output_file.hpp"
-#include "planner/assembly.hpp"
-#include "planner/mesh_io.hpp"
+#include "planner/assembly/assembly.hpp"
+#include "planner/mesh/mesh_io.hpp"
 
 namespace wearknit::cli {
 

@@ -1,10 +1,10 @@
 // wearknit assembly: (re)writes the assembly guide of a finished plan folder
-// (planner/assembly.hpp): assembly.svg, assembly.pdf and assembly-3d.png.
+// (planner/assembly/assembly.hpp): assembly.svg, assembly.pdf and assembly-3d.png.
 #include <filesystem>
 #include <ostream>
 
 #include "apps/wearknit/cli.hpp"
-#include "planner/assembly.hpp"
+#include "planner/assembly/assembly.hpp"
 
 namespace wearknit::cli {
 

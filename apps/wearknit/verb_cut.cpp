@@ -6,11 +6,11 @@
 #include <ostream>
 
 #include "apps/wearknit/cli.hpp"
-#include "planner/cut.hpp"
-#include "planner/cut_io.hpp"
-#include "planner/mesh_io.hpp"
-#include "planner/pictures.hpp"
-#include "planner/proxy.hpp"
+#include "planner/cut/cut.hpp"
+#include "planner/cut/cut_io.hpp"
+#include "planner/cut/cut_pictures.hpp"
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/proxy/proxy.hpp"
 
 namespace wearknit::cli {
 

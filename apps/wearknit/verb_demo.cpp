@@ -20,8 +20,8 @@
 #include "apps/wearknit/plan_pipeline.hpp"
 #include "knitout/output_file.hpp"
 #include "knitout/parser.hpp"
-#include "planner/mesh_io.hpp"
-#include "planner/shapes.hpp"
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/mesh/shapes.hpp"
 #include "simulators/bed/validate.hpp"
 
 namespace wearknit::cli {

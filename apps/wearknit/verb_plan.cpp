@@ -5,7 +5,7 @@
 
 #include "apps/wearknit/cli.hpp"
 #include "apps/wearknit/plan_pipeline.hpp"
-#include "planner/stitch_mesh_gauge.hpp"
+#include "planner/stitch_mesh/gauge.hpp"
 
 namespace wearknit::cli {
 

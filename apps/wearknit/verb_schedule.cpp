@@ -18,10 +18,10 @@
 #include "backends/dat/raster.hpp"
 #include "knitout/output_file.hpp"
 #include "knitout/parser.hpp"
-#include "planner/knitout_emit.hpp"
-#include "planner/piece_layout.hpp"
-#include "planner/schedule.hpp"
-#include "planner/stitch_mesh.hpp"
+#include "planner/schedule/knitout_emit.hpp"
+#include "planner/schedule/piece_layout.hpp"
+#include "planner/schedule/schedule.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
 #include "simulators/bed/bed_view.hpp"
 #include "simulators/bed/machine.hpp"
 #include "simulators/bed/profile.hpp"
@@ -155,7 +155,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
     return kExitUsage;
   }
   knitout::DiagnosticSink sink;
-  // The stitch stage's own reader (planner/stitch_mesh.hpp): the scheduler
+  // The stitch stage's own reader (planner/stitch_mesh/stitch_mesh.hpp): the scheduler
   // reads exactly what `wearknit stitch-mesh` writes, cut-arcs included.
   std::ifstream smobj_in(smobj, std::ios::binary);
   if (!smobj_in) {
@@ -306,7 +306,7 @@ int run_schedule(const std::vector<std::string>& args, Context& context) {
                           {"planner_time_model_s", st.knit_time_s}});
   }
 
-  // Each piece laid flat, for the assembly guide (planner/piece_layout.hpp).
+  // Each piece laid flat, for the assembly guide (planner/schedule/piece_layout.hpp).
   if (const std::string failure =
           planner::write_piece_layouts((folder / "pieces").string(), schedule);
       !failure.empty()) {

@@ -7,11 +7,11 @@
 
 #include "apps/wearknit/cli.hpp"
 #include "knitout/output_file.hpp"
-#include "planner/cut_io.hpp"
-#include "planner/stitch_mesh.hpp"
-#include "planner/stitch_mesh_gauge.hpp"
-#include "planner/stitch_mesh_io.hpp"
-#include "planner/stitch_mesh_remesh.hpp"
+#include "planner/cut/cut_io.hpp"
+#include "planner/stitch_mesh/gauge.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
+#include "planner/stitch_mesh/stitch_mesh_io.hpp"
+#include "planner/stitch_mesh/stitch_mesher.hpp"
 
 namespace wearknit::cli {
 

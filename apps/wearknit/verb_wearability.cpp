@@ -13,10 +13,10 @@
 
 #include "apps/wearknit/cli.hpp"
 #include "knitout/output_file.hpp"
-#include "planner/wearability.hpp"
-#include "planner/wearability_io.hpp"
-#include "planner/wearability_journal.hpp"
-#include "planner/wearability_recut.hpp"
+#include "planner/wearability/journal.hpp"
+#include "planner/wearability/recut.hpp"
+#include "planner/wearability/wearability.hpp"
+#include "planner/wearability/wearability_io.hpp"
 
 namespace wearknit::cli {
 

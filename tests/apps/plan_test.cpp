@@ -14,8 +14,8 @@
 #include <sstream>
 
 #include "knitout/parser.hpp"
-#include "planner/mesh_io.hpp"
-#include "planner/shapes.hpp"
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/mesh/shapes.hpp"
 #include "simulators/bed/profile.hpp"
 #include "simulators/bed/validate.hpp"
 #include "tests/test_support.hpp"

@@ -1,7 +1,7 @@
-// The assembly guide (planner/assembly.hpp, `wearknit assembly`) on plan
+// The assembly guide (planner/assembly/assembly.hpp, `wearknit assembly`) on plan
 // folders made here by the real stages: cut, wearability, stitch-mesh,
 // schedule.
-#include "planner/assembly.hpp"
+#include "planner/assembly/assembly.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <vector>
 
-#include "planner/wearability.hpp"
+#include "planner/wearability/wearability.hpp"
 
 namespace wearknit::test {
 

@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "planner/mesh_io.hpp"
+#include "planner/mesh/mesh_io.hpp"
 #include "tests/test_support.hpp"
 
 namespace planner {

@@ -1,4 +1,4 @@
-#include "planner/cut.hpp"
+#include "planner/cut/cut.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,9 +6,9 @@
 #include <iostream>
 #include <set>
 
-#include "planner/cut_io.hpp"
-#include "planner/mesh_io.hpp"
-#include "planner/proxy.hpp"
+#include "planner/cut/cut_io.hpp"
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/proxy/proxy.hpp"
 #include "tests/planner/test_meshes.hpp"
 #include "tests/test_support.hpp"
 

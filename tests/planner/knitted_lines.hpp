@@ -7,7 +7,7 @@
 #include <set>
 #include <vector>
 
-#include "planner/knitout_emit.hpp"
+#include "planner/schedule/knitout_emit.hpp"
 #include "simulators/bed/knit_graph.hpp"
 
 namespace planner::testing {

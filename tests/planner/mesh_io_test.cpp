@@ -1,4 +1,4 @@
-#include "planner/mesh_io.hpp"
+#include "planner/mesh/mesh_io.hpp"
 
 #include <gtest/gtest.h>
 

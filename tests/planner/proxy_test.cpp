@@ -1,4 +1,4 @@
-#include "planner/proxy.hpp"
+#include "planner/proxy/proxy.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <iostream>
 #include <optional>
 
-#include "planner/mesh_io.hpp"
-#include "planner/remesh.hpp"
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/proxy/remesh.hpp"
 #include "tests/planner/test_meshes.hpp"
 #include "tests/test_support.hpp"
 

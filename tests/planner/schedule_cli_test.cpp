@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "knitout/parser.hpp"
-#include "planner/schedule.hpp"
-#include "planner/stitch_mesh.hpp"
+#include "planner/schedule/schedule.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
 #include "tests/planner/bed_check.hpp"
 #include "tests/planner/schedule_fixtures.hpp"
 #include "tests/test_support.hpp"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "planner/stitch_mesh.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
 
 namespace planner::fixtures {
 

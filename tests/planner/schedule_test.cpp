@@ -1,4 +1,4 @@
-#include "planner/schedule.hpp"
+#include "planner/schedule/schedule.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <set>
 
 #include "knitout/parser.hpp"
-#include "planner/knitout_emit.hpp"
-#include "planner/schoolbus.hpp"
+#include "planner/schedule/knitout_emit.hpp"
+#include "planner/schedule/schoolbus.hpp"
 #include "tests/planner/bed_check.hpp"
 #include "tests/planner/schedule_fixtures.hpp"
 

@@ -8,7 +8,7 @@
 #include <set>
 
 #include "knitout/parser.hpp"
-#include "planner/knitout_emit.hpp"
+#include "planner/schedule/knitout_emit.hpp"
 #include "simulators/bed/knit_graph.hpp"
 #include "simulators/bed/validate.hpp"
 #include "tests/planner/knitted_lines.hpp"

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "planner/stitch_mesh_remesh.hpp"
+#include "planner/stitch_mesh/stitch_mesher.hpp"
 
 namespace planner::stitch_discs {
 

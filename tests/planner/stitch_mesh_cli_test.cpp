@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "planner/stitch_mesh.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
 #include "tests/test_support.hpp"
 
 namespace {

@@ -1,5 +1,3 @@
-#include "planner/stitch_mesh_remesh.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,7 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "planner/stitch_mesh.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
+#include "planner/stitch_mesh/stitch_mesher.hpp"
 #include "simulators/cloth/sdf.hpp"
 #include "tests/planner/stitch_discs.hpp"
 

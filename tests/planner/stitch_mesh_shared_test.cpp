@@ -19,14 +19,14 @@
 #include <utility>
 #include <vector>
 
-#include "planner/cut.hpp"
-#include "planner/mesh_io.hpp"
-#include "planner/proxy.hpp"
-#include "planner/remesh.hpp"
-#include "planner/stitch_mesh.hpp"
-#include "planner/stitch_mesh_io.hpp"
-#include "planner/stitch_mesh_remesh.hpp"
-#include "planner/wearability.hpp"
+#include "planner/cut/cut.hpp"
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/proxy/proxy.hpp"
+#include "planner/proxy/remesh.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
+#include "planner/stitch_mesh/stitch_mesh_io.hpp"
+#include "planner/stitch_mesh/stitch_mesher.hpp"
+#include "planner/wearability/wearability.hpp"
 #include "tests/planner/stitch_discs.hpp"
 #include "tests/test_support.hpp"
 

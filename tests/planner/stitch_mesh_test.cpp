@@ -1,4 +1,4 @@
-#include "planner/stitch_mesh.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "planner/stitch_mesh_gauge.hpp"
+#include "planner/stitch_mesh/gauge.hpp"
 
 namespace planner {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "planner/mesh.hpp"
+#include "planner/mesh/mesh.hpp"
 
 namespace planner::test_meshes {
 

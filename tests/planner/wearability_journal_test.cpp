@@ -1,7 +1,5 @@
 // The wearability stage's journal: a run cut short resumes from it with the
 // results an uninterrupted run gets.
-#include "planner/wearability_journal.hpp"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,6 +7,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "planner/wearability/journal.hpp"
 #include "tests/planner/cover_shapes.hpp"
 #include "tests/test_support.hpp"
 

@@ -1,4 +1,4 @@
-#include "planner/wearability.hpp"
+#include "planner/wearability/wearability.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "planner/wearability_io.hpp"
+#include "planner/wearability/wearability_io.hpp"
 #include "tests/planner/cover_shapes.hpp"
 #include "tests/test_support.hpp"
 

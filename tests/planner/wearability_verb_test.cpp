@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "planner/cut.hpp"
-#include "planner/cut_io.hpp"
-#include "planner/wearability_io.hpp"
-#include "planner/wearability_recut.hpp"
+#include "planner/cut/cut.hpp"
+#include "planner/cut/cut_io.hpp"
+#include "planner/wearability/recut.hpp"
+#include "planner/wearability/wearability_io.hpp"
 #include "tests/planner/cover_shapes.hpp"
 #include "tests/test_support.hpp"
 

@@ -1,0 +1,587 @@
+#include "planner/cut/cut.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <numbers>
+#include <numeric>
+#include <queue>
+#include <random>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "planner/common/union_find.hpp"
+
+namespace planner {
+
+namespace {
+
+std::size_t at(int i) {
+  return static_cast<std::size_t>(i);
+}
+
+// Crossing a side of direction d leaves a counter-clockwise unit square
+// through that side: the +u side is the bottom one, so the neighbour lies at
+// -v; and so on round the square.
+constexpr std::array<std::array<int, 2>, 4> kStep = {{{0, -1}, {1, 0}, {0, 1}, {-1, 0}}};
+
+std::uint64_t cell_key(const std::array<int, 2>& uv) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(uv[0])) << 32) |
+         static_cast<std::uint32_t>(uv[1]);
+}
+
+bool is_vanishing(const HalfedgeMesh& q, const FieldLabels& labels, int h) {
+  return labels.vanishing_corner[at(q.face(h))] == q.corner(h);
+}
+
+// Outgoing half-edges of interior vertex w, rotated to start at `first`.
+std::vector<int> fan_from(const HalfedgeMesh& q, int w, int first) {
+  std::vector<int> out = q.outgoing(w);
+  auto it = std::find(out.begin(), out.end(), first);
+  if (it == out.end()) throw std::logic_error("fan_from: half-edge not around its vertex");
+  std::rotate(out.begin(), it, out.end());
+  return out;
+}
+
+// The outgoing half-edges of w that continue `back` (an outgoing half-edge
+// of w, the way we came) topologically straight: two non-vanishing corners
+// away on the counter-clockwise side. w must be an interior vertex with 4
+// non-vanishing corners. With a vanishing corner in between there are two.
+std::vector<int> straight_continuations(const HalfedgeMesh& q, const FieldLabels& labels, int w,
+                                        int back) {
+  const std::vector<int> fan = fan_from(q, w, back);
+  std::vector<int> result;
+  int count = 0;
+  for (std::size_t j = 1; j < fan.size(); ++j) {
+    count += is_vanishing(q, labels, fan[j - 1]) ? 0 : 1;
+    if (count == 2) result.push_back(fan[j]);
+    if (count > 2) break;
+  }
+  return result;
+}
+
+// §4.2, Fig. 4: motorcycles leave every irregular vertex along each of its
+// edges and run straight until they reach a vertex already visited or the
+// mesh boundary. They advance in lock step so none is favoured by order.
+std::vector<int> motorcycle_graph(const HalfedgeMesh& q, const FieldLabels& labels,
+                                  std::mt19937_64& rng) {
+  std::vector<int> crossings(at(q.num_edges()), 0);
+  std::vector<bool> visited(at(q.num_vertices()), false);
+  std::vector<int> riders;
+  for (int v : labels.irregular_vertices) {
+    visited[at(v)] = true;
+    for (int h : q.outgoing(v)) riders.push_back(h);
+  }
+  while (!riders.empty()) {
+    std::vector<int> next;
+    for (int h : riders) {
+      ++crossings[at(q.edge(h))];
+      const int w = q.to(h);
+      if (visited[at(w)] || q.is_boundary_vertex(w) || labels.corner_count[at(w)] != 4) {
+        visited[at(w)] = true;
+        continue;
+      }
+      visited[at(w)] = true;
+      const std::vector<int> straight = straight_continuations(q, labels, w, q.twin(h));
+      if (straight.empty()) continue;
+      // At a vanishing corner either side is straight: pick one (§4.2).
+      next.push_back(straight.size() == 1 ? straight[0] : straight[rng() % straight.size()]);
+    }
+    riders = std::move(next);
+  }
+  return crossings;
+}
+
+// The disc: corners glued across every edge that is neither cut nor boundary.
+void build_disc(CutMesh& cut) {
+  const HalfedgeMesh& q = cut.proxy;
+  UnionFind corners(at(q.num_halfedges()));
+  for (int h = 0; h < q.num_halfedges(); ++h) {
+    const int t = q.twin(h);
+    if (t < h || cut.cut_edge[at(q.edge(h))]) continue;
+    corners.unite(h, q.next(t));
+    corners.unite(q.next(h), t);
+  }
+  // The first copy of every vertex of Q keeps Q's index, so cut-mesh.obj
+  // starts with proxy.obj's vertices in order and the copies made by the
+  // cuts follow: cuts.json's indices are then valid in both files.
+  const int nv = q.num_vertices();
+  std::vector<int> id(at(q.num_halfedges()), -1);
+  std::vector<bool> taken(at(nv), false);
+  cut.disc = SurfaceMesh{};
+  cut.disc.positions.resize(at(nv));
+  cut.disc_source.resize(at(nv));
+  for (int v = 0; v < nv; ++v) {
+    cut.disc.positions[at(v)] = q.position(v);
+    cut.disc_source[at(v)] = v;
+  }
+  for (int h = 0; h < q.num_halfedges(); ++h) {
+    const int root = corners.find(h);
+    if (id[at(root)] >= 0) continue;
+    const int v = q.from(h);
+    if (!taken[at(v)]) {
+      taken[at(v)] = true;
+      id[at(root)] = v;
+    } else {
+      id[at(root)] = static_cast<int>(cut.disc_source.size());
+      cut.disc_source.push_back(v);
+      cut.disc.positions.push_back(q.position(v));
+    }
+  }
+  cut.disc.faces.resize(at(q.num_faces()));
+  for (int f = 0; f < q.num_faces(); ++f) {
+    for (int i = 0; i < q.degree(f); ++i) {
+      cut.disc.faces[at(f)].push_back(id[at(corners.find(q.face_start(f) + i))]);
+    }
+  }
+}
+
+// The outgoing half-edge of w along edge e.
+int out_along(const HalfedgeMesh& q, int w, int e) {
+  const int h = q.edge_halfedge(e);
+  return q.from(h) == w ? h : q.twin(h);
+}
+
+// Cut-arcs: maximal paths of cut edges that pass straight through regular
+// interior vertices where exactly two cut edges meet.
+std::vector<CutArc> find_arcs(const HalfedgeMesh& q, const FieldLabels& labels,
+                              const std::vector<bool>& cut_edge) {
+  std::vector<std::vector<int>> incident(at(q.num_vertices()));
+  for (int e = 0; e < q.num_edges(); ++e) {
+    if (!cut_edge[at(e)]) continue;
+    const int h = q.edge_halfedge(e);
+    incident[at(q.from(h))].push_back(e);
+    incident[at(q.to(h))].push_back(e);
+  }
+  auto passes_straight = [&](int w) {
+    const auto& list = incident[at(w)];
+    if (list.size() != 2 || q.is_boundary_vertex(w) || labels.corner_count[at(w)] != 4) {
+      return false;
+    }
+    const int second = out_along(q, w, list[1]);
+    for (int h : straight_continuations(q, labels, w, out_along(q, w, list[0]))) {
+      if (h == second) return true;
+    }
+    return false;
+  };
+  std::vector<bool> node(at(q.num_vertices()), false);
+  for (int v = 0; v < q.num_vertices(); ++v) {
+    node[at(v)] = !incident[at(v)].empty() && !passes_straight(v);
+  }
+  std::vector<bool> used(at(q.num_edges()), false);
+  std::vector<CutArc> arcs;
+  auto walk = [&](int start, int first_edge) {
+    CutArc arc;
+    arc.vertices.push_back(start);
+    int w = start;
+    int e = first_edge;
+    while (true) {
+      used[at(e)] = true;
+      const int h = out_along(q, w, e);
+      arc.length_mm += q.edge_length(h);
+      w = q.to(h);
+      arc.vertices.push_back(w);
+      if (node[at(w)] || w == start) break;
+      const auto& list = incident[at(w)];
+      const int next = list[0] == e ? list[1] : list[0];
+      if (used[at(next)]) break;
+      e = next;
+    }
+    arc.closed = arc.vertices.back() == arc.vertices.front();
+    arcs.push_back(std::move(arc));
+  };
+  for (int v = 0; v < q.num_vertices(); ++v) {
+    if (!node[at(v)]) continue;
+    for (int e : incident[at(v)]) {
+      if (!used[at(e)]) walk(v, e);
+    }
+  }
+  for (int e = 0; e < q.num_edges(); ++e) {  // loops through regular vertices only
+    if (cut_edge[at(e)] && !used[at(e)]) walk(q.from(q.edge_halfedge(e)), e);
+  }
+  return arcs;
+}
+
+}  // namespace
+
+FieldLabels label_field(const HalfedgeMesh& q, const VanishingRule& rule) {
+  FieldLabels labels;
+  labels.vanishing_corner.assign(at(q.num_faces()), -1);
+  std::vector<std::array<bool, 3>> allowed(at(q.num_faces()), {false, false, false});
+  for (int f = 0; f < q.num_faces(); ++f) {
+    const int n = q.degree(f);
+    if (n == 4) continue;
+    if (n != 3) {
+      throw std::logic_error("label_field: face " + std::to_string(f) + " has " +
+                             std::to_string(n) + " corners (split polygons first)");
+    }
+    // §4.1: the most acute corner of a triangle vanishes.
+    int best = 0;
+    double smallest = 10.0;
+    std::array<double, 3> angles{};
+    for (int i = 0; i < 3; ++i) {
+      angles[at(i)] = q.corner_angle(q.face_start(f) + i);
+      if (angles[at(i)] < smallest) {
+        smallest = angles[at(i)];
+        best = i;
+      }
+    }
+    labels.vanishing_corner[at(f)] = best;
+    for (int i = 0; i < 3; ++i) {
+      allowed[at(f)][at(i)] = angles[at(i)] <= smallest + rule.slack_deg * std::numbers::pi / 180.0;
+    }
+  }
+  FieldLabels acute = labels_with_vanishing(q, std::move(labels.vanishing_corner));
+  if (!rule.fewest_irregular) return acute;
+  // Corners around each vertex, not counting vanishing ones; a triangle moves
+  // its vanishing corner to another allowed corner when that brings its three
+  // vertices closer to four corners each (sum of |count - 4| over interior
+  // vertices), until no triangle can.
+  std::vector<int>& count = acute.corner_count;
+  std::vector<int>& vanishing = acute.vanishing_corner;
+  auto misfit = [&](int v) { return q.is_boundary_vertex(v) ? 0 : std::abs(count[at(v)] - 4); };
+  for (int sweep = 0; sweep < 100; ++sweep) {
+    bool moved = false;
+    for (int f = 0; f < q.num_faces(); ++f) {
+      if (q.degree(f) != 3) continue;
+      const int current = vanishing[at(f)];
+      const int from = q.from(q.face_start(f) + current);
+      int choice = current, choice_cost = 0;
+      for (int i = 0; i < 3; ++i) {
+        if (i == current || !allowed[at(f)][at(i)]) continue;
+        const int to = q.from(q.face_start(f) + i);
+        const int before = misfit(from) + misfit(to);
+        ++count[at(from)];
+        --count[at(to)];
+        const int change = misfit(from) + misfit(to) - before;
+        --count[at(from)];
+        ++count[at(to)];
+        if (change < choice_cost) {
+          choice = i;
+          choice_cost = change;
+        }
+      }
+      if (choice != current) {
+        ++count[at(from)];
+        --count[at(q.from(q.face_start(f) + choice))];
+        vanishing[at(f)] = choice;
+        moved = true;
+      }
+    }
+    if (!moved) break;
+  }
+  return labels_with_vanishing(q, std::move(vanishing));
+}
+
+FieldLabels labels_with_vanishing(const HalfedgeMesh& q, std::vector<int> vanishing_corner) {
+  FieldLabels labels;
+  labels.vanishing_corner = std::move(vanishing_corner);
+  labels.corner_count.assign(at(q.num_vertices()), 0);
+  for (int h = 0; h < q.num_halfedges(); ++h) {
+    if (!is_vanishing(q, labels, h)) ++labels.corner_count[at(q.from(h))];
+  }
+  for (int v = 0; v < q.num_vertices(); ++v) {
+    if (q.is_boundary_vertex(v)) continue;
+    if (labels.corner_count[at(v)] != 4) labels.irregular_vertices.push_back(v);
+    if (labels.corner_count[at(v)] % 4 != 0) labels.singular_vertices.push_back(v);
+  }
+  return labels;
+}
+
+int corner_turn(const HalfedgeMesh& q, const FieldLabels& labels, int h) {
+  return is_vanishing(q, labels, h) ? 2 : 1;
+}
+
+int halfedge_direction(const HalfedgeMesh& q, const FieldLabels& labels, int frame, int h) {
+  const int start = q.face_start(q.face(h));
+  int d = frame;
+  for (int i = start + 1; i <= h; ++i) d += corner_turn(q, labels, i);
+  return d % 4;
+}
+
+CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params) {
+  CutMesh cut;
+  cut.proxy = std::move(proxy);
+  const HalfedgeMesh& q = cut.proxy;
+  const int nf = q.num_faces();
+  const int nh = q.num_halfedges();
+  if (nf == 0) throw std::logic_error("cut_surface: empty proxy");
+  cut.labels = label_field(q, params.vanishing);
+  const FieldLabels& labels = cut.labels;
+
+  std::mt19937_64 rng(params.seed);
+  // The seed is an arbitrary quad (§4.1); the seed number picks it.
+  std::vector<int> quads;
+  for (int f = 0; f < nf; ++f) {
+    if (q.degree(f) == 4) quads.push_back(f);
+  }
+  const int seed_face = quads.empty() ? static_cast<int>(rng() % static_cast<std::uint64_t>(nf))
+                                      : quads[rng() % quads.size()];
+  cut.seed_face = seed_face;
+  cut.motorcycle_edges = motorcycle_graph(q, labels, rng);
+
+  cut.face_frame.assign(at(nf), -1);
+  cut.direction.assign(at(nh), -1);
+  cut.face_uv.assign(at(nf), {0, 0});
+  std::vector<double> overlap_score(at(nf), 0.0);
+  std::unordered_map<std::uint64_t, int> grid;
+  std::vector<bool> visited(at(nf), false);
+  std::vector<bool> in_b(at(nh), false);
+  std::vector<int> next_b(at(nh), -1);
+  std::vector<int> prev_b(at(nh), -1);
+  int b_size = 0;
+
+  auto place = [&](int f, int frame, std::array<int, 2> uv, double score) {
+    visited[at(f)] = true;
+    cut.face_frame[at(f)] = frame;
+    for (int i = 0; i < q.degree(f); ++i) {
+      const int h = q.face_start(f) + i;
+      cut.direction[at(h)] = halfedge_direction(q, labels, frame, h);
+    }
+    cut.face_uv[at(f)] = uv;
+    overlap_score[at(f)] = score;
+    ++grid[cell_key(uv)];
+  };
+  auto score_of = [&](int h) {
+    const int f = q.face(h);
+    const auto& step = kStep[at(cut.direction[at(h)])];
+    const std::array<int, 2> uv = {cut.face_uv[at(f)][0] + step[0],
+                                   cut.face_uv[at(f)][1] + step[1]};
+    auto it = grid.find(cell_key(uv));
+    const int count = it == grid.end() ? 0 : it->second;
+    return params.cs * cut.motorcycle_edges[at(q.edge(h))] +
+           params.co * (overlap_score[at(f)] + count);
+  };
+  struct Entry {
+    double score;
+    std::uint64_t key;
+    int h;
+    bool operator>(const Entry& o) const {
+      if (score != o.score) return score > o.score;
+      if (key != o.key) return key > o.key;
+      return h > o.h;
+    }
+  };
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  auto offer = [&](int f) {
+    for (int i = 0; i < q.degree(f); ++i) {
+      const int h = q.face_start(f) + i;
+      const int t = q.twin(h);
+      if (in_b[at(h)] && t >= 0 && !visited[at(q.face(t))]) queue.push({score_of(h), rng(), h});
+    }
+  };
+
+  // Seed frame: the wale direction (+v) along the longest side of Q's bounding box.
+  {
+    const Vec3 size = bounding_box_size(q.polygons());
+    Vec3 axis = Vec3::Zero();
+    int longest = 0;
+    size.maxCoeff(&longest);
+    axis[longest] = 1.0;
+    int best_h = q.face_start(seed_face);
+    double best = -2.0;
+    for (int i = 0; i < q.degree(seed_face); ++i) {
+      const int h = q.face_start(seed_face) + i;
+      const Vec3 d = (q.position(q.to(h)) - q.position(q.from(h))).normalized();
+      if (d.dot(axis) > best) {
+        best = d.dot(axis);
+        best_h = h;
+      }
+    }
+    const int frame = ((1 - halfedge_direction(q, labels, 0, best_h)) % 4 + 4) % 4;
+    place(seed_face, frame, {0, 0}, 0.0);
+    const int n = q.degree(seed_face);
+    for (int i = 0; i < n; ++i) {
+      const int h = q.face_start(seed_face) + i;
+      in_b[at(h)] = true;
+      next_b[at(h)] = q.face_start(seed_face) + (i + 1) % n;
+      prev_b[at(h)] = q.face_start(seed_face) + (i + n - 1) % n;
+    }
+    b_size = n;
+    offer(seed_face);
+  }
+
+  auto try_fusions = [&](std::vector<int> pending) {
+    while (!pending.empty()) {
+      const int a = pending.back();
+      pending.pop_back();
+      if (!in_b[at(a)]) continue;
+      const int b = next_b[at(a)];
+      // §4.1 fusion: consecutive boundary elements on the two sides of one
+      // edge dissolve, only when their directions are opposite.
+      if (b != q.twin(a) || b_size <= 2) continue;
+      if ((cut.direction[at(a)] + 2) % 4 != cut.direction[at(b)]) continue;
+      const int before = prev_b[at(a)];
+      const int after = next_b[at(b)];
+      next_b[at(before)] = after;
+      prev_b[at(after)] = before;
+      in_b[at(a)] = in_b[at(b)] = false;
+      b_size -= 2;
+      // §4.2: both faces take the smaller overlap score, plus their own cell's extra layers.
+      const int fa = q.face(a);
+      const int fb = q.face(b);
+      const double low = std::min(overlap_score[at(fa)], overlap_score[at(fb)]);
+      overlap_score[at(fa)] = low + grid[cell_key(cut.face_uv[at(fa)])] - 1;
+      overlap_score[at(fb)] = low + grid[cell_key(cut.face_uv[at(fb)])] - 1;
+      offer(fa);
+      offer(fb);
+      pending.push_back(before);
+    }
+  };
+
+  int placed = 1;
+  while (!queue.empty()) {
+    const Entry entry = queue.top();
+    queue.pop();
+    const int h = entry.h;
+    if (!in_b[at(h)]) continue;
+    const int t = q.twin(h);
+    const int g = q.face(t);
+    if (visited[at(g)]) continue;
+    const double score = score_of(h);
+    if (score > entry.score + 1e-9) {  // stale: the grid filled up since it was offered
+      queue.push({score, rng(), h});
+      continue;
+    }
+    // §4.1 expansion over h: g's frame makes t opposite to h.
+    const int f = q.face(h);
+    const int frame =
+        ((cut.direction[at(h)] + 2 - halfedge_direction(q, labels, 0, t)) % 4 + 4) % 4;
+    const auto& step = kStep[at(cut.direction[at(h)])];
+    const std::array<int, 2> uv = {cut.face_uv[at(f)][0] + step[0],
+                                   cut.face_uv[at(f)][1] + step[1]};
+    const auto cell = grid.find(cell_key(uv));
+    const int count = cell == grid.end() ? 0 : cell->second;
+    place(g, frame, uv, overlap_score[at(f)] + count);
+    ++placed;
+    // In B, h is replaced by g's other half-edges, in order.
+    const int before = prev_b[at(h)];
+    const int after = next_b[at(h)];
+    in_b[at(h)] = false;
+    int last = before;
+    for (int x = q.next(t); x != t; x = q.next(x)) {
+      in_b[at(x)] = true;
+      next_b[at(last)] = x;
+      prev_b[at(x)] = last;
+      last = x;
+    }
+    next_b[at(last)] = after;
+    prev_b[at(after)] = last;
+    b_size += q.degree(g) - 2;
+    try_fusions({before, last});
+    offer(g);
+  }
+  if (placed != nf) {
+    throw std::logic_error("cut_surface: proxy is not connected (" + std::to_string(placed) +
+                           " of " + std::to_string(nf) + " faces reached)");
+  }
+
+  cut.cut_edge.assign(at(q.num_edges()), false);
+  for (int h = 0; h < nh; ++h) {
+    const int t = q.twin(h);
+    if (t >= 0 && in_b[at(h)] && in_b[at(t)]) cut.cut_edge[at(q.edge(h))] = true;
+  }
+  cut.overlap_count.assign(at(nf), 0);
+  for (int f = 0; f < nf; ++f) cut.overlap_count[at(f)] = grid[cell_key(cut.face_uv[at(f)])];
+  build_disc(cut);
+  cut.arcs = find_arcs(q, labels, cut.cut_edge);
+  return cut;
+}
+
+std::vector<std::string> verify_cut(const CutMesh& cut) {
+  std::vector<std::string> problems;
+  const HalfedgeMesh& q = cut.proxy;
+  for (int f = 0; f < q.num_faces(); ++f) {
+    for (int i = 0; i < q.degree(f); ++i) {
+      const int h = q.face_start(f) + i;
+      if (cut.direction[at(h)] != halfedge_direction(q, cut.labels, cut.face_frame[at(f)], h)) {
+        problems.push_back("face " + std::to_string(f) + ": direction of side " +
+                           std::to_string(i) + " does not follow its corners");
+      }
+    }
+  }
+  for (int h = 0; h < q.num_halfedges(); ++h) {
+    const int t = q.twin(h);
+    if (t < 0 || cut.cut_edge[at(q.edge(h))]) continue;
+    if ((cut.direction[at(h)] + 2) % 4 != cut.direction[at(t)]) {
+      problems.push_back("uncut edge " + std::to_string(q.from(h)) + "-" + std::to_string(q.to(h)) +
+                         " has inconsistent labels");
+    }
+  }
+  try {
+    const HalfedgeMesh disc(cut.disc);
+    if (disc.euler_characteristic() != 1) {
+      problems.push_back("disc Euler characteristic is " +
+                         std::to_string(disc.euler_characteristic()) + ", not 1");
+    }
+    if (disc.count_boundary_loops() != 1) {
+      problems.push_back("disc has " + std::to_string(disc.count_boundary_loops()) +
+                         " boundary loops, not 1");
+    }
+    // Interior disc vertices: non-vanishing corners around them must be a multiple of 4.
+    std::vector<int> corners(at(disc.num_vertices()), 0);
+    for (int h = 0; h < disc.num_halfedges(); ++h) {
+      if (cut.labels.vanishing_corner[at(disc.face(h))] != disc.corner(h)) {
+        ++corners[at(disc.from(h))];
+      }
+    }
+    for (int v = 0; v < disc.num_vertices(); ++v) {
+      if (!disc.is_boundary_vertex(v) && corners[at(v)] % 4 != 0) {
+        problems.push_back("singular vertex " + std::to_string(cut.disc_source[at(v)]) +
+                           " is inside the disc");
+      }
+    }
+  } catch (const std::logic_error& e) {
+    problems.push_back(std::string("disc is not an oriented manifold: ") + e.what());
+  }
+  std::vector<int> covered(at(q.num_edges()), 0);
+  std::map<std::pair<int, int>, int> edge_of;
+  for (int e = 0; e < q.num_edges(); ++e) {
+    const int h = q.edge_halfedge(e);
+    edge_of[{std::min(q.from(h), q.to(h)), std::max(q.from(h), q.to(h))}] = e;
+  }
+  for (const CutArc& arc : cut.arcs) {
+    for (std::size_t i = 0; i + 1 < arc.vertices.size(); ++i) {
+      const int a = arc.vertices[i];
+      const int b = arc.vertices[i + 1];
+      auto it = edge_of.find({std::min(a, b), std::max(a, b)});
+      if (it == edge_of.end()) {
+        problems.push_back("arc step " + std::to_string(a) + "-" + std::to_string(b) +
+                           " is not an edge");
+      } else {
+        ++covered[at(it->second)];
+      }
+    }
+  }
+  for (int e = 0; e < q.num_edges(); ++e) {
+    if (covered[at(e)] != (cut.cut_edge[at(e)] ? 1 : 0)) {
+      problems.push_back("edge " + std::to_string(e) + " is covered by " +
+                         std::to_string(covered[at(e)]) + " arcs");
+    }
+  }
+  return problems;
+}
+
+CutSummary summarize(const CutMesh& cut) {
+  CutSummary s;
+  s.irregular_vertices = static_cast<int>(cut.labels.irregular_vertices.size());
+  for (int e = 0; e < cut.proxy.num_edges(); ++e) {
+    if (!cut.cut_edge[at(e)]) continue;
+    ++s.cut_edges;
+    s.cut_length_mm += cut.proxy.edge_length(cut.proxy.edge_halfedge(e));
+  }
+  s.arcs = static_cast<int>(cut.arcs.size());
+  for (int c : cut.overlap_count) s.overlapping_faces += c > 1 ? 1 : 0;
+  s.disc_vertices = static_cast<int>(cut.disc.positions.size());
+  try {
+    const HalfedgeMesh disc(cut.disc);
+    s.boundary_loops = disc.count_boundary_loops();
+    s.euler_characteristic = disc.euler_characteristic();
+  } catch (const std::logic_error&) {
+    s.boundary_loops = -1;
+    s.euler_characteristic = 0;
+  }
+  return s;
+}
+
+}  // namespace planner

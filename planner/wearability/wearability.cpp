@@ -1,0 +1,592 @@
+#include "planner/wearability/wearability.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <queue>
+#include <random>
+#include <stdexcept>
+#include <thread>
+#include <unordered_map>
+
+#include "planner/common/union_find.hpp"
+#include "simulators/cloth/parallel.hpp"
+
+namespace planner {
+
+namespace {
+
+std::uint64_t edge_key(int a, int b) {
+  const auto lo = static_cast<std::uint32_t>(std::min(a, b));
+  const auto hi = static_cast<std::uint32_t>(std::max(a, b));
+  return (static_cast<std::uint64_t>(lo) << 32) | hi;
+}
+
+// SplitMix64: decorrelates the seeds of runs, tests and trials derived from
+// one user seed.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+std::uint64_t derive(std::uint64_t seed, std::uint64_t a, std::uint64_t b = 0) {
+  return mix(mix(mix(seed) ^ a) ^ (b * 0x632BE59BD9B4E019ULL));
+}
+
+// Fisher–Yates with modulo draws: the permutation depends only on the seed,
+// not on the standard library's shuffle.
+std::vector<int> random_order(int n, std::uint64_t seed) {
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937_64 random(seed);
+  for (int i = n - 1; i > 0; --i) std::swap(order[i], order[random() % (i + 1)]);
+  return order;
+}
+
+}  // namespace
+
+std::uint64_t fingerprint(std::string_view bytes, std::uint64_t seed) {
+  std::uint64_t h = mix(seed ^ bytes.size());
+  std::size_t i = 0;
+  for (; i + 8 <= bytes.size(); i += 8) {
+    std::uint64_t word = 0;
+    for (int b = 0; b < 8; ++b)
+      word |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[i + b])) << (8 * b);
+    h = mix(h ^ word);
+  }
+  std::uint64_t tail = 0;
+  for (int b = 0; i < bytes.size(); ++i, ++b)
+    tail |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[i])) << (8 * b);
+  return mix(h ^ tail ^ 0xFF);
+}
+
+std::uint64_t fingerprint(const CoverMesh& mesh) {
+  std::string bytes;
+  auto put = [&](const void* data, std::size_t size) {
+    bytes.append(static_cast<const char*>(data), size);
+  };
+  for (const Vec3& v : mesh.vertices) {
+    const double xyz[3] = {v.x(), v.y(), v.z()};
+    put(xyz, sizeof xyz);
+  }
+  for (const auto& face : mesh.faces) {
+    const int size = static_cast<int>(face.size());
+    put(&size, sizeof size);
+    put(face.data(), face.size() * sizeof(int));
+  }
+  for (const auto& arc : mesh.arcs) {
+    const int size = static_cast<int>(arc.edges.size());
+    put(&size, sizeof size);
+    for (const auto& edge : arc.edges) put(edge.data(), sizeof(int) * 2);
+  }
+  return fingerprint(bytes, 0x434F564552);
+}
+
+std::uint64_t test_key(std::uint64_t garment, const std::vector<bool>& open, std::uint64_t seed) {
+  std::string bits((open.size() + 7) / 8, '\0');
+  for (std::size_t a = 0; a < open.size(); ++a) {
+    if (open[a]) bits[a / 8] = static_cast<char>(bits[a / 8] | (1 << (a % 8)));
+  }
+  return derive(fingerprint(bits, garment), seed, open.size());
+}
+
+const char* to_string(Label label) {
+  return label == Label::Sew ? "sew" : "lace";
+}
+
+std::vector<std::string> validate(const CoverMesh& mesh) {
+  std::vector<std::string> problems;
+  const int n = static_cast<int>(mesh.vertices.size());
+  std::unordered_map<std::uint64_t, int> edge_faces;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    if (face.size() < 3) {
+      problems.push_back("face " + std::to_string(f) + " has fewer than 3 vertices");
+      continue;
+    }
+    bool in_range = true;
+    for (int v : face) {
+      if (v < 0 || v >= n) {
+        problems.push_back("face " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
+                           ", but there are " + std::to_string(n));
+        in_range = false;
+      }
+    }
+    if (!in_range) continue;
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const int a = face[i], b = face[(i + 1) % face.size()];
+      if (a == b) {
+        problems.push_back("face " + std::to_string(f) + " repeats vertex " + std::to_string(a));
+        continue;
+      }
+      if (++edge_faces[edge_key(a, b)] == 3) {
+        problems.push_back("edge " + std::to_string(a) + "-" + std::to_string(b) +
+                           " has more than two faces (face " + std::to_string(f) + ")");
+      }
+    }
+  }
+  std::unordered_map<std::uint64_t, int> arc_of_edge;
+  for (std::size_t a = 0; a < mesh.arcs.size(); ++a) {
+    const auto& arc = mesh.arcs[a];
+    if (arc.edges.empty()) problems.push_back("arc " + std::to_string(a) + " has no edges");
+    for (std::size_t e = 0; e < arc.edges.size(); ++e) {
+      const auto [u, v] = arc.edges[e];
+      const std::string where = "arc " + std::to_string(a) + " edge " + std::to_string(e) + " (" +
+                                std::to_string(u) + "-" + std::to_string(v) + ")";
+      if (!edge_faces.contains(edge_key(u, v))) {
+        problems.push_back(where + " is not an edge of the mesh");
+        continue;
+      }
+      const auto [it, inserted] = arc_of_edge.emplace(edge_key(u, v), static_cast<int>(a));
+      if (!inserted) {
+        problems.push_back(where + " is also in arc " + std::to_string(it->second));
+      }
+    }
+  }
+  return problems;
+}
+
+CoverArc arc_from_path(const std::vector<int>& path, std::string name) {
+  CoverArc arc;
+  arc.name = std::move(name);
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) arc.edges.push_back({path[i], path[i + 1]});
+  return arc;
+}
+
+std::vector<int> shortest_edge_path(const CoverMesh& mesh, int from, int to) {
+  const std::size_t n = mesh.vertices.size();
+  std::vector<std::vector<int>> neighbours(n);
+  for (const auto& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const int a = face[i], b = face[(i + 1) % face.size()];
+      neighbours[a].push_back(b);
+      neighbours[b].push_back(a);
+    }
+  }
+  std::vector<double> distance(n, std::numeric_limits<double>::infinity());
+  std::vector<int> previous(n, -1);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  distance[from] = 0;
+  queue.push({0.0, from});
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > distance[v]) continue;
+    if (v == to) break;
+    for (int w : neighbours[v]) {
+      const double candidate = d + (mesh.vertices[v] - mesh.vertices[w]).norm();
+      if (candidate < distance[w]) {
+        distance[w] = candidate;
+        previous[w] = v;
+        queue.push({candidate, w});
+      }
+    }
+  }
+  if (from != to && previous[to] < 0) return {};
+  std::vector<int> path;
+  for (int v = to; v != -1; v = previous[v]) path.push_back(v);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+int nearest_vertex(const CoverMesh& mesh, const Vec3& point) {
+  int best = -1;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    const double d = (mesh.vertices[v] - point).squaredNorm();
+    if (d < best_distance) {
+      best_distance = d;
+      best = static_cast<int>(v);
+    }
+  }
+  return best;
+}
+
+std::vector<int> weld_vertices(std::vector<Vec3>& vertices, std::vector<std::vector<int>>& faces,
+                               double tolerance) {
+  // Grid hashing at the tolerance: candidates sit in the 27 cells around.
+  const double cell = std::max(tolerance, 1e-300);
+  auto cell_of = [&](const Vec3& p) {
+    return std::array<long long, 3>{static_cast<long long>(std::floor(p.x() / cell)),
+                                    static_cast<long long>(std::floor(p.y() / cell)),
+                                    static_cast<long long>(std::floor(p.z() / cell))};
+  };
+  std::map<std::array<long long, 3>, std::vector<int>> grid;
+  std::vector<int> map(vertices.size());
+  std::vector<Vec3> kept;
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    const auto c = cell_of(vertices[v]);
+    int found = -1;
+    for (int dx = -1; dx <= 1 && found < 0; ++dx) {
+      for (int dy = -1; dy <= 1 && found < 0; ++dy) {
+        for (int dz = -1; dz <= 1 && found < 0; ++dz) {
+          const auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
+          if (it == grid.end()) continue;
+          for (int k : it->second) {
+            if ((kept[k] - vertices[v]).norm() <= tolerance) {
+              found = k;
+              break;
+            }
+          }
+        }
+      }
+    }
+    if (found < 0) {
+      found = static_cast<int>(kept.size());
+      kept.push_back(vertices[v]);
+      grid[c].push_back(found);
+    }
+    map[v] = found;
+  }
+  vertices = std::move(kept);
+  for (auto& face : faces) {
+    for (int& v : face) v = map[v];
+  }
+  return map;
+}
+
+CoverMesh subdivided(const CoverMesh& mesh) {
+  CoverMesh result;
+  result.vertices = mesh.vertices;
+  std::unordered_map<std::uint64_t, int> midpoint;
+  auto middle = [&](int a, int b) {
+    const auto [it, inserted] =
+        midpoint.emplace(edge_key(a, b), static_cast<int>(result.vertices.size()));
+    if (inserted) result.vertices.push_back(0.5 * (mesh.vertices[a] + mesh.vertices[b]));
+    return it->second;
+  };
+  for (const auto& face : mesh.faces) {
+    const std::size_t n = face.size();
+    Vec3 centre = Vec3::Zero();
+    for (int v : face) centre += mesh.vertices[v];
+    const int c = static_cast<int>(result.vertices.size());
+    result.vertices.push_back(centre / static_cast<double>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      const int previous = face[(i + n - 1) % n], here = face[i], next = face[(i + 1) % n];
+      result.faces.push_back({here, middle(here, next), c, middle(previous, here)});
+    }
+  }
+  for (const auto& arc : mesh.arcs) {
+    CoverArc half{arc.name, {}};
+    for (const auto& [u, v] : arc.edges) {
+      const int m = middle(u, v);
+      half.edges.push_back({u, m});
+      half.edges.push_back({m, v});
+    }
+    result.arcs.push_back(std::move(half));
+  }
+  return result;
+}
+
+CoverMesh refined_for_cloth(CoverMesh mesh, int min_vertices) {
+  for (int step = 0; step < 4 && static_cast<int>(mesh.vertices.size()) < min_vertices; ++step) {
+    mesh = subdivided(mesh);
+  }
+  return mesh;
+}
+
+cloth::ClothMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
+                           std::vector<int>* source) {
+  std::unordered_map<std::uint64_t, bool> cut;
+  for (std::size_t a = 0; a < mesh.arcs.size(); ++a) {
+    if (a < open.size() && open[a]) {
+      for (const auto& [u, v] : mesh.arcs[a].edges) cut[edge_key(u, v)] = true;
+    }
+  }
+  // Corners (face, position) are united across every edge that stays
+  // closed; each class of corners at one vertex becomes one vertex copy.
+  std::vector<int> first_corner(mesh.faces.size() + 1, 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    first_corner[f + 1] = first_corner[f] + static_cast<int>(mesh.faces[f].size());
+  }
+  std::unordered_map<std::uint64_t, int> half_edge;  // (from,to) → corner of `from`
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const std::uint64_t key = (static_cast<std::uint64_t>(face[i]) << 32) |
+                                static_cast<std::uint32_t>(face[(i + 1) % face.size()]);
+      half_edge[key] = first_corner[f] + static_cast<int>(i);
+    }
+  }
+  UnionFind corners(first_corner.back());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const int a = face[i], b = face[(i + 1) % face.size()];
+      if (cut.contains(edge_key(a, b))) continue;
+      const std::uint64_t twin =
+          (static_cast<std::uint64_t>(b) << 32) | static_cast<std::uint32_t>(a);
+      const auto it = half_edge.find(twin);
+      if (it == half_edge.end()) continue;  // boundary
+      // Twin b→a starts at corner `it->second` (vertex b); its next corner
+      // is vertex a.
+      const int corner_a = first_corner[f] + static_cast<int>(i);
+      const int corner_b = first_corner[f] + static_cast<int>((i + 1) % face.size());
+      const int twin_b = it->second;
+      int twin_face =
+          static_cast<int>(std::upper_bound(first_corner.begin(), first_corner.end(), twin_b) -
+                           first_corner.begin()) -
+          1;
+      const int twin_size = static_cast<int>(mesh.faces[twin_face].size());
+      const int twin_a =
+          first_corner[twin_face] + (twin_b - first_corner[twin_face] + 1) % twin_size;
+      corners.unite(corner_a, twin_a);
+      corners.unite(corner_b, twin_b);
+    }
+  }
+  cloth::ClothMesh result;
+  std::unordered_map<int, int> copy_of_class;
+  if (source != nullptr) source->clear();
+  result.faces.resize(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const int root = corners.find(first_corner[f] + static_cast<int>(i));
+      const auto [it, inserted] =
+          copy_of_class.emplace(root, static_cast<int>(result.positions.size()));
+      if (inserted) {
+        result.positions.push_back(mesh.vertices[face[i]]);
+        if (source != nullptr) source->push_back(face[i]);
+      }
+      result.faces[f].push_back(it->second);
+    }
+  }
+  return result;
+}
+
+std::vector<bool> EliminationResult::open() const {
+  std::vector<bool> result(arcs.size());
+  for (std::size_t a = 0; a < arcs.size(); ++a) result[a] = arcs[a].label == Label::Lace;
+  return result;
+}
+
+CoverMesh dressed(const CoverMesh& mesh, const cloth::SignedDistanceField& wearer,
+                  const cloth::ClothParams& params) {
+  CoverMesh result = mesh;
+  cloth::ClothMesh garment{result.vertices, {}};
+  cloth::dress(garment, wearer, params.clearance);
+  result.vertices = std::move(garment.positions);
+  return result;
+}
+
+TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
+                            const cloth::SignedDistanceField& wearer,
+                            const WearabilityParams& params, std::uint64_t seed) {
+  const cloth::ClothMesh garment = open_cuts(dressed_mesh, open);
+  const int trials = std::max(params.trials, 1);
+  const int workers = std::min(cloth::resolve_threads(params.threads), trials);
+  cloth::ClothParams simulation = params.cloth;
+  simulation.threads = 1;  // parallelism is over trials
+
+  std::vector<TrialOutcome> outcomes(trials);
+  std::vector<std::uint64_t> steps(trials, 0), projections(trials, 0);
+  std::atomic<int> next{0};
+  std::atomic<int> first_success{trials};
+  auto work = [&] {
+    for (;;) {
+      const int t = next.fetch_add(1);
+      if (t >= trials || t > first_success.load()) return;
+      TrialOutcome& outcome = outcomes[t];
+      outcome.seed = derive(seed, static_cast<std::uint64_t>(t));
+      cloth::ClothSimulation sim(garment, wearer, simulation);
+      // A trial after a successful one cannot change the answer: stop it.
+      const auto result = sim.run(outcome.seed, [&](int, const cloth::ClothSimulation&) {
+        return first_success.load(std::memory_order_relaxed) > t;
+      });
+      outcome.success = result.success;
+      outcome.steps = result.steps;
+      outcome.stalled = result.stalled;
+      outcome.min_distance = result.min_distance / wearer.scale();
+      steps[t] = static_cast<std::uint64_t>(result.steps);
+      projections[t] = result.projections;
+      if (result.success) {
+        int current = first_success.load();
+        while (t < current && !first_success.compare_exchange_weak(current, t)) {
+        }
+      }
+    }
+  };
+  if (workers <= 1) {
+    work();
+  } else {
+    std::vector<std::thread> pool;
+    for (int w = 0; w < workers; ++w) pool.emplace_back(work);
+    for (auto& thread : pool) thread.join();
+  }
+  TestResult result;
+  const int last = first_success.load();
+  result.wearable = last < trials;
+  // Trials before the first success all ran to their end (none was stopped:
+  // only trials after a success are), so this record is the same for any
+  // thread count.
+  const int recorded = result.wearable ? last + 1 : trials;
+  result.trials.assign(outcomes.begin(), outcomes.begin() + recorded);
+  for (int t = 0; t < trials; ++t) {
+    result.steps += steps[t];
+    result.projections += projections[t];
+  }
+  return result;
+}
+
+EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceField& wearer,
+                            const WearabilityParams& params, int run,
+                            const ProgressCallback& progress) {
+  if (const auto problems = validate(mesh); !problems.empty()) {
+    throw std::invalid_argument(problems.front());
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const CoverMesh garment = dressed(mesh, wearer, params.cloth);
+  const int arcs = static_cast<int>(mesh.arcs.size());
+  const auto run_seed = derive(params.seed, 0x52554E, static_cast<std::uint64_t>(run));
+  EliminationResult result;
+  result.arcs.resize(arcs);
+  std::vector<bool> open(arcs, true);
+  Progress report{run, 1, 0, arcs, 0};
+  if (progress) progress(report);
+  const std::uint64_t garment_key = params.record != nullptr ? fingerprint(garment) : 0;
+  // A test from the record when it holds one, else simulated and recorded.
+  auto run_test = [&](std::uint64_t seed) {
+    if (params.record == nullptr) return test_wearability(garment, open, wearer, params, seed);
+    const std::uint64_t key = test_key(garment_key, open, seed);
+    if (auto known = params.record->find(key)) {
+      ++result.replayed;
+      return *known;
+    }
+    TestResult fresh = test_wearability(garment, open, wearer, params, seed);
+    params.record->add(key, fresh);
+    return fresh;
+  };
+  // §5: first check that the garment with every cut open is wearable.
+  result.initial = run_test(derive(run_seed, 0));
+  result.steps += result.initial.steps;
+  result.projections += result.initial.projections;
+  if (result.initial.wearable) {
+    result.order = random_order(arcs, derive(run_seed, 1));
+    int position = 0;
+    // Runs one test of the garment with the arcs of order[first, last)
+    // closed tentatively; a group's seed differs from any single arc's.
+    auto test_closed = [&](int first, int last) {
+      for (int p = first; p < last; ++p) open[result.order[p]] = false;
+      const std::uint64_t seed =
+          last - first == 1 ? derive(run_seed, 2, static_cast<std::uint64_t>(result.order[first]))
+                            : derive(run_seed, 3,
+                                     (static_cast<std::uint64_t>(first) << 32) |
+                                         static_cast<std::uint64_t>(last));
+      TestResult outcome = run_test(seed);
+      outcome.group = last - first;
+      result.steps += outcome.steps;
+      result.projections += outcome.projections;
+      ++result.tests;
+      if (!outcome.wearable) {
+        for (int p = first; p < last; ++p) open[result.order[p]] = true;
+      }
+      return outcome;
+    };
+    auto decide = [&](int first, int last, const TestResult& test) {
+      for (int p = first; p < last; ++p) {
+        ArcResult& outcome = result.arcs[result.order[p]];
+        outcome.position = p;
+        outcome.test = test;
+        if (test.wearable) {
+          outcome.label = Label::Sew;
+          ++report.sewn;
+        }
+      }
+      position = std::max(position, last);
+      report.tested = position;
+      if (progress) progress(report);
+    };
+    // Settles order[first, last); `failed` (may be null) is a test already
+    // run of exactly the configuration with all of them closed, which did
+    // not come off. Returns whether any of them was laced.
+    std::function<bool(int, int, const TestResult*)> settle = [&](int first, int last,
+                                                                  const TestResult* failed) {
+      TestResult test;
+      if (failed == nullptr) {
+        test = test_closed(first, last);
+        if (test.wearable) {
+          decide(first, last, test);
+          return false;
+        }
+        failed = &test;
+      }
+      if (last - first == 1) {
+        decide(first, last, *failed);
+        return true;
+      }
+      const int middle = first + (last - first) / 2;
+      if (settle(first, middle, nullptr)) {
+        settle(middle, last, nullptr);
+        return true;
+      }
+      // The first half is all sewn, so closing the second half now gives
+      // exactly the configuration that failed: split it without a test.
+      settle(middle, last, failed);
+      return true;
+    };
+    // §5 takes the arcs one at a time. With group testing (see
+    // WearabilityParams::group_testing) a run of arcs is closed together
+    // while the garment keeps coming off, the run doubling after each
+    // success and halving after a run that laced an arc.
+    int group = 1;
+    while (position < arcs) {
+      const int last = std::min(arcs, position + group);
+      const bool laced = settle(position, last, nullptr);
+      if (params.group_testing) {
+        group = laced ? std::max(1, group / 2) : std::min(group * 2, std::max(params.max_group, 1));
+      }
+    }
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+int chosen_run(const LacingStudy& study) {
+  int best = -1, best_sewn = -1;
+  for (std::size_t r = 0; r < study.runs.size(); ++r) {
+    if (!study.runs[r].wearable()) continue;
+    int sewn = 0;
+    for (const auto& arc : study.runs[r].arcs) sewn += arc.label == Label::Sew;
+    if (sewn > best_sewn) {
+      best = static_cast<int>(r);
+      best_sewn = sewn;
+    }
+  }
+  return best;
+}
+
+LacingStudy study_lacing(const CoverMesh& mesh, const cloth::SignedDistanceField& wearer,
+                         const WearabilityParams& params, int runs,
+                         const ProgressCallback& progress) {
+  LacingStudy study;
+  const std::size_t arcs = mesh.arcs.size();
+  std::vector<int> laced(arcs, 0);
+  for (int r = 0; r < std::max(runs, 1); ++r) {
+    ProgressCallback forward;
+    if (progress) {
+      forward = [&](const Progress& p) {
+        Progress copy = p;
+        copy.runs = std::max(runs, 1);
+        progress(copy);
+      };
+    }
+    study.runs.push_back(eliminate(mesh, wearer, params, r, forward));
+    const auto& result = study.runs.back();
+    if (!result.wearable()) continue;
+    ++study.wearable_runs;
+    for (std::size_t a = 0; a < arcs; ++a) laced[a] += result.arcs[a].label == Label::Lace;
+  }
+  study.lace_probability.assign(arcs, 0.0);
+  for (std::size_t a = 0; a < arcs && study.wearable_runs > 0; ++a) {
+    study.lace_probability[a] = static_cast<double>(laced[a]) / study.wearable_runs;
+  }
+  return study;
+}
+
+}  // namespace planner

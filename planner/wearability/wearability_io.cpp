@@ -1,0 +1,236 @@
+#include "planner/wearability/wearability_io.hpp"
+
+#include <Eigen/Geometry>
+#include <charconv>
+#include <fstream>
+#include <istream>
+#include <ostream>
+#include <sstream>
+
+namespace planner {
+
+namespace {
+
+bool parse_double(std::string_view text, double& value) {
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  return result.ec == std::errc() && result.ptr == text.data() + text.size();
+}
+
+bool parse_long(std::string_view text, long& value) {
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  return result.ec == std::errc() && result.ptr == text.data() + text.size();
+}
+
+}  // namespace
+
+std::optional<PolygonMesh> read_obj(std::istream& in, const std::string& source,
+                                    knitout::DiagnosticSink& sink) {
+  PolygonMesh mesh;
+  struct PendingFace {
+    std::vector<long> indices;
+    std::uint32_t line;
+  };
+  std::vector<PendingFace> pending;
+  std::string line;
+  std::uint32_t number = 0;
+  const std::size_t errors_before = sink.error_count();
+  while (std::getline(in, line) && !sink.saturated()) {
+    ++number;
+    std::istringstream words(line);
+    std::string keyword;
+    if (!(words >> keyword) || keyword[0] == '#') continue;
+    if (keyword == "v") {
+      std::string x, y, z;
+      Vec3 p;
+      if (!(words >> x >> y >> z) || !parse_double(x, p.x()) || !parse_double(y, p.y()) ||
+          !parse_double(z, p.z())) {
+        sink.error(source, number, 0, "W001", "vertex needs three numbers: '" + line + "'");
+        continue;
+      }
+      mesh.vertices.push_back(p);
+    } else if (keyword == "f") {
+      PendingFace face{{}, number};
+      std::string corner;
+      bool ok = true;
+      while (words >> corner) {
+        long index = 0;
+        if (!parse_long(corner.substr(0, corner.find('/')), index) || index == 0) {
+          sink.error(source, number, 0, "W001", "bad face index '" + corner + "'");
+          ok = false;
+          break;
+        }
+        // Negative indices count back from the vertices read so far.
+        face.indices.push_back(index > 0 ? index - 1
+                                         : static_cast<long>(mesh.vertices.size()) + index);
+      }
+      if (!ok) continue;
+      if (face.indices.size() < 3) {
+        sink.error(source, number, 0, "W001", "face needs at least three vertices");
+        continue;
+      }
+      pending.push_back(std::move(face));
+    }
+  }
+  for (const auto& face : pending) {
+    std::vector<int> indices;
+    for (long index : face.indices) {
+      if (index < 0 || index >= static_cast<long>(mesh.vertices.size())) {
+        sink.error(source, face.line, 0, "W002",
+                   "face refers to vertex " + std::to_string(index + 1) + ", but the file has " +
+                       std::to_string(mesh.vertices.size()));
+        indices.clear();
+        break;
+      }
+      indices.push_back(static_cast<int>(index));
+    }
+    if (!indices.empty()) mesh.faces.push_back(std::move(indices));
+  }
+  if (sink.error_count() > errors_before) return std::nullopt;
+  if (mesh.faces.empty()) {
+    sink.error(source, 0, 0, "W003", "mesh has no faces");
+    return std::nullopt;
+  }
+  return mesh;
+}
+
+std::optional<PolygonMesh> read_obj_file(const std::string& path, knitout::DiagnosticSink& sink) {
+  std::ifstream in(path);
+  if (!in) {
+    sink.error(path, 0, 0, "W004", "cannot open file");
+    return std::nullopt;
+  }
+  return read_obj(in, path, sink);
+}
+
+void write_obj(std::ostream& out, const std::vector<Vec3>& vertices,
+               const std::vector<std::vector<int>>& faces) {
+  out.precision(9);
+  for (const Vec3& v : vertices) out << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+  for (const auto& face : faces) {
+    out << 'f';
+    for (int v : face) out << ' ' << v + 1;
+    out << '\n';
+  }
+}
+
+std::optional<CoverMesh> read_cover_mesh(const PolygonMesh& cut_mesh, const nlohmann::json& cuts,
+                                         const std::string& cuts_source,
+                                         knitout::DiagnosticSink& sink) {
+  CoverMesh mesh;
+  mesh.vertices = cut_mesh.vertices;
+  mesh.faces = cut_mesh.faces;
+  Eigen::AlignedBox3d box;
+  for (const Vec3& v : mesh.vertices) box.extend(v);
+  // Both sides of a split cut sit at the same point; 1e-9 of the size
+  // merges them and nothing else.
+  const std::vector<int> weld =
+      weld_vertices(mesh.vertices, mesh.faces, 1e-9 * std::max(box.diagonal().norm(), 1e-300));
+  const std::size_t errors_before = sink.error_count();
+  if (!cuts.is_object() || !cuts.contains("arcs") || !cuts["arcs"].is_array()) {
+    sink.error(cuts_source, 0, 0, "W010", "expected an object with an array \"arcs\"");
+    return std::nullopt;
+  }
+  auto vertex = [&](const nlohmann::json& value, const std::string& where) -> int {
+    if (!value.is_number_integer() || value.get<long long>() < 0 ||
+        value.get<long long>() >= static_cast<long long>(weld.size())) {
+      sink.error(cuts_source, 0, 0, "W010",
+                 where + ": vertex index " + value.dump() + " is not in 0.." +
+                     std::to_string(weld.size() - 1));
+      return -1;
+    }
+    return weld[value.get<std::size_t>()];
+  };
+  const auto& arcs = cuts["arcs"];
+  for (std::size_t a = 0; a < arcs.size(); ++a) {
+    const auto& entry = arcs[a];
+    const std::string where = "arc " + std::to_string(a);
+    CoverArc arc;
+    if (entry.is_object() && entry.contains("id")) arc.name = entry["id"].dump();
+    if (entry.is_object() && entry.contains("edges") && entry["edges"].is_array()) {
+      for (const auto& edge : entry["edges"]) {
+        if (!edge.is_array() || edge.size() != 2) {
+          sink.error(cuts_source, 0, 0, "W010", where + ": an edge is not a pair " + edge.dump());
+          continue;
+        }
+        const int u = vertex(edge[0], where), v = vertex(edge[1], where);
+        if (u >= 0 && v >= 0) arc.edges.push_back({u, v});
+      }
+    } else if (entry.is_object() && entry.contains("vertices") && entry["vertices"].is_array()) {
+      std::vector<int> path;
+      for (const auto& v : entry["vertices"]) path.push_back(vertex(v, where));
+      for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+        if (path[i] >= 0 && path[i + 1] >= 0) arc.edges.push_back({path[i], path[i + 1]});
+      }
+    } else {
+      sink.error(cuts_source, 0, 0, "W010", where + ": needs \"edges\" or \"vertices\"");
+      continue;
+    }
+    mesh.arcs.push_back(std::move(arc));
+  }
+  if (sink.error_count() > errors_before) return std::nullopt;
+  for (const std::string& problem : validate(mesh)) {
+    sink.error(cuts_source, 0, 0, "W011", problem);
+  }
+  if (sink.error_count() > errors_before) return std::nullopt;
+  return mesh;
+}
+
+nlohmann::json trials_json(const std::vector<TrialOutcome>& trials) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& t : trials) {
+    list.push_back({{"seed", t.seed},
+                    {"success", t.success},
+                    {"steps", t.steps},
+                    {"stalled", t.stalled},
+                    {"min_distance", t.min_distance}});
+  }
+  return list;
+}
+
+void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study,
+                   const WearabilityParams& params) {
+  const int chosen = chosen_run(study);
+  auto& arcs = cuts["arcs"];
+  const EliminationResult* result = chosen >= 0 ? &study.runs[chosen] : nullptr;
+  for (std::size_t a = 0; a < arcs.size(); ++a) {
+    if (result == nullptr) {
+      arcs[a]["label"] = "lace";
+      arcs[a].erase("wearability");
+      continue;
+    }
+    const ArcResult& arc = result->arcs[a];
+    arcs[a]["label"] = to_string(arc.label);
+    nlohmann::json detail = {{"position", arc.position},
+                             {"wearable_when_sewn", arc.test.wearable},
+                             {"tested_with", arc.test.group - 1},
+                             {"trials", trials_json(arc.test.trials)}};
+    if (study.runs.size() > 1) detail["lace_probability"] = study.lace_probability[a];
+    arcs[a]["wearability"] = detail;
+  }
+  nlohmann::json summary = {
+      {"wearable", chosen >= 0},
+      {"runs", study.runs.size()},
+      {"wearable_runs", study.wearable_runs},
+      {"chosen_run", chosen},
+      {"trials_per_test", params.trials},
+      {"group_testing", params.group_testing},
+      {"seed", params.seed},
+      {"max_steps", params.cloth.max_steps},
+      {"switch_steps", params.cloth.switch_steps},
+  };
+  if (!study.runs.empty()) {
+    summary["initial_trials"] = trials_json(study.runs[chosen >= 0 ? chosen : 0].initial.trials);
+  }
+  if (result != nullptr) {
+    int sewn = 0;
+    for (const auto& arc : result->arcs) sewn += arc.label == Label::Sew;
+    summary["sewn"] = sewn;
+    summary["tests"] = result->tests + 1;
+    // Tests of a run cut short, read from its journal instead of simulated.
+    summary["tests_replayed"] = result->replayed;
+    summary["laced"] = static_cast<int>(result->arcs.size()) - sewn;
+  }
+  cuts["wearability"] = summary;
+}
+
+}  // namespace planner
