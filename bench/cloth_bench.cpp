@@ -21,7 +21,7 @@ std::filesystem::path shared_dir() {
 
 planner::PolygonMesh load(const std::string& name) {
   knitout::DiagnosticSink sink;
-  auto mesh = planner::read_obj_file((shared_dir() / "meshes" / name).string(), sink);
+  auto mesh = planner::read_stage_mesh((shared_dir() / "meshes" / name).string(), sink);
   if (!mesh) {
     knitout::print_text(std::cerr, sink.diagnostics());
     std::exit(2);
@@ -32,7 +32,7 @@ planner::PolygonMesh load(const std::string& name) {
 struct Bunny {
   planner::PolygonMesh wearer = load("bunny.obj");
   planner::PolygonMesh garment = load("bunny-qd.obj");
-  cloth::SignedDistanceField field{wearer.vertices, wearer.faces, {}};
+  cloth::SignedDistanceField field{wearer.positions, wearer.faces, {}};
 };
 
 const Bunny& bunny() {
@@ -46,8 +46,8 @@ void BM_SdfBuild(benchmark::State& state) {
   params.resolution = static_cast<int>(state.range(0));
   params.threads = 2;
   for (auto _ : state) {
-    cloth::SignedDistanceField field(b.wearer.vertices, b.wearer.faces, params);
-    benchmark::DoNotOptimize(field.value(b.wearer.vertices[0]));
+    cloth::SignedDistanceField field(b.wearer.positions, b.wearer.faces, params);
+    benchmark::DoNotOptimize(field.value(b.wearer.positions[0]));
   }
   state.counters["nodes"] = static_cast<double>(static_cast<long>(params.resolution + 1) *
                                                 (params.resolution + 1) * (params.resolution + 1));
@@ -60,7 +60,7 @@ void BM_ClothStep(benchmark::State& state) {
   const auto& b = bunny();
   cloth::ClothParams params;
   params.threads = static_cast<int>(state.range(0));
-  cloth::ClothMesh garment{b.garment.vertices, b.garment.faces};
+  cloth::PolygonMesh garment{b.garment.positions, b.garment.faces};
   cloth::dress(garment, b.field, params.clearance);
   cloth::ClothSimulation sim(garment, b.field, params);
   const auto axes = cloth::global_directions(1, 1000);

@@ -19,7 +19,7 @@ std::filesystem::path meshes_dir() {
   return std::filesystem::path(WEARKNIT_SOURCE_DIR).parent_path() / "shared" / "meshes";
 }
 
-planner::SurfaceMesh load(const std::string& name) {
+planner::PolygonMesh load(const std::string& name) {
   knitout::DiagnosticSink sink;
   auto mesh = planner::load_mesh((meshes_dir() / name).string(), {}, sink);
   if (!mesh) throw std::runtime_error("cannot load " + name + " (set WEARKNIT_SHARED)");
@@ -29,7 +29,7 @@ planner::SurfaceMesh load(const std::string& name) {
 // Load, proxy (the input as is) and cut: what `wearknit cut bunny-qd.obj` computes.
 void BM_CutBunnyQd(benchmark::State& state) {
   for (auto _ : state) {
-    const planner::SurfaceMesh mesh = load("bunny-qd.obj");
+    const planner::PolygonMesh mesh = load("bunny-qd.obj");
     planner::ProxyResult proxy = planner::make_proxy(mesh, {});
     planner::CutMesh cut = planner::cut_surface(planner::HalfedgeMesh(std::move(proxy.mesh)), {});
     benchmark::DoNotOptimize(cut.direction.data());
@@ -41,7 +41,7 @@ BENCHMARK(BM_CutBunnyQd)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 // Load the 52,000-face armadillo, remesh it (about 3000 quads) and cut.
 void BM_RemeshAndCutArmadillo(benchmark::State& state) {
   for (auto _ : state) {
-    const planner::SurfaceMesh mesh = load("armadillo.obj");
+    const planner::PolygonMesh mesh = load("armadillo.obj");
     planner::ProxyResult proxy = planner::make_proxy(mesh, {});
     planner::CutMesh cut = planner::cut_surface(planner::HalfedgeMesh(std::move(proxy.mesh)), {});
     benchmark::DoNotOptimize(cut.direction.data());

@@ -13,6 +13,7 @@
 #include <set>
 #include <string>
 
+#include "planner/mesh/mesh_io.hpp"
 #include "planner/wearability/wearability_io.hpp"
 
 int main(int argc, char** argv) {
@@ -21,7 +22,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   knitout::DiagnosticSink sink;
-  const auto mesh = planner::read_obj_file(argv[1], sink);
+  const auto mesh = planner::read_stage_mesh(argv[1], sink);
   if (!mesh) {
     knitout::print_text(std::cerr, sink.diagnostics());
     return 1;
@@ -29,7 +30,7 @@ int main(int argc, char** argv) {
   const int per_arc = argc > 3 ? std::max(1, std::atoi(argv[3])) : 8;
   std::vector<std::string> extremes = {"+x", "-y", "+z", "+y"};
   if (argc > 4) extremes.assign(argv + 4, argv + argc);
-  planner::CoverMesh cover{mesh->vertices, mesh->faces, {}};
+  planner::CoverMesh cover{*mesh, {}};
   std::vector<int> waypoints;
   for (const std::string& extreme : extremes) {
     if (extreme.size() != 2 || (extreme[0] != '+' && extreme[0] != '-') || extreme[1] < 'x' ||
@@ -40,8 +41,8 @@ int main(int argc, char** argv) {
     const int axis = extreme[1] - 'x';
     const double sign = extreme[0] == '+' ? 1 : -1;
     int best = 0;
-    for (std::size_t v = 0; v < cover.vertices.size(); ++v) {
-      if (sign * cover.vertices[v][axis] > sign * cover.vertices[best][axis])
+    for (std::size_t v = 0; v < cover.positions.size(); ++v) {
+      if (sign * cover.positions[v][axis] > sign * cover.positions[best][axis])
         best = static_cast<int>(v);
     }
     waypoints.push_back(best);
@@ -66,7 +67,7 @@ int main(int argc, char** argv) {
   const std::filesystem::path dir(argv[2]);
   std::filesystem::create_directories(dir);
   std::ofstream obj(dir / "cut-mesh.obj");
-  planner::write_obj(obj, cover.vertices, cover.faces);
+  planner::write_obj(obj, cover);
   std::ofstream json(dir / "cuts.json");
   json << cuts.dump(1) << '\n';
   if (!obj || !json) {

@@ -1,4 +1,4 @@
-// Stitch meshing speed (§6): remesh_anisotropic on a cut folder written by
+// Stitch meshing speed (§6): make_stitch_mesh on a cut folder written by
 // `wearknit cut` (bench/stitch_mesh.sh makes the 10 cm bunny cover).
 //   stitch_mesh_bench CUT_DIR [benchmark options]
 #include <benchmark/benchmark.h>
@@ -16,10 +16,10 @@ namespace {
 planner::LabelledDisc g_disc;
 
 void StitchMesh(benchmark::State& state) {
-  const planner::AnisoRemeshParams params;
+  const planner::StitchMeshParams params;
   std::size_t faces = 0;
   for (auto _ : state) {
-    const planner::AnisoRemeshResult result = planner::remesh_anisotropic(g_disc, params);
+    const planner::StitchMeshResult result = planner::make_stitch_mesh(g_disc, params);
     if (!result.problems.empty()) {
       state.SkipWithError(("stitch meshing failed: " + result.problems.front()).c_str());
       return;

@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
   // As the stage reads it by default (--cloth-vertices 500): a coarse garment
   // is subdivided for the cloth, its arcs keeping their indices.
   const auto folder = planner::read_cut_folder(dir, sink, 500);
-  const auto wearer = planner::read_obj_file(argv[2], sink);
+  const auto wearer = planner::read_stage_mesh(argv[2], sink);
   if (!folder || !wearer) {
     knitout::print_text(std::cerr, sink.diagnostics());
     return 1;
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
 
   cloth::SdfParams sdf;
   sdf.threads = threads;
-  const cloth::SignedDistanceField field(wearer->vertices, wearer->faces, sdf);
+  const cloth::SignedDistanceField field(wearer->positions, wearer->faces, sdf);
   cloth::ClothParams params;
   params.threads = 1;
   const planner::CoverMesh garment = planner::dressed(cover, field, params);
@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
     closed_arc[c] = laced[(c - 1) * laced.size() / (configs - 1)];
     open_of[c][closed_arc[c]] = false;
   }
-  std::vector<cloth::ClothMesh> meshes;
+  std::vector<cloth::PolygonMesh> meshes;
   for (const auto& o : open_of) meshes.push_back(planner::open_cuts(garment, o));
 
   std::vector<Job> jobs;

@@ -317,7 +317,7 @@ int run_plan_pipeline(const PlanOptions& options, Context& context) {
         if (longest > 0) scale = options.size_mm / longest;
       }
     }
-    std::optional<planner::SurfaceMesh> wearer;
+    std::optional<planner::PolygonMesh> wearer;
     if (!sink.has_errors())
       wearer = planner::load_mesh(options.wearer, {*mm_per_unit, scale}, sink);
     knitout::print_text(err, sink.diagnostics());

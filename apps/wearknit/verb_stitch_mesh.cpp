@@ -23,7 +23,7 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
   std::string stitch_mm;
   std::string format_name;
   planner::StitchGauge gauge;
-  planner::AnisoRemeshParams params;
+  planner::StitchMeshParams params;
   po::options_description options("options");
   options.add_options()("dir", po::value<std::string>(&dir)->required(),
                         "a folder written by `wearknit cut`; the stitch mesh is written there")(
@@ -111,7 +111,7 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context) {
   }
   params.course_mm = gauge.course_mm;
   params.wale_mm = gauge.wale_mm;
-  const planner::AnisoRemeshResult result = planner::remesh_anisotropic(disc, params);
+  const planner::StitchMeshResult result = planner::make_stitch_mesh(disc, params);
   if (!result.problems.empty()) {
     // The cut mesh was read fine but could not be meshed into valid stitches.
     std::size_t shown = 0;

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "knitout/output_file.hpp"
+#include "planner/common/index.hpp"
 #include "planner/common/union_find.hpp"
 #include "planner/schedule/piece_layout.hpp"
 #include "planner/schedule/schedule.hpp"
@@ -35,10 +36,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::size_t at(int i) {
-  return static_cast<std::size_t>(i);
-}
 
 // A failure with its message already formatted.
 struct Failure : std::runtime_error {
@@ -269,7 +266,7 @@ void load(Model& m, const fs::path& dir) {
   if (!cuts.contains("arcs") || !cuts["arcs"].is_array())
     fail(cuts_path, "A002", "no \"arcs\" list (write it with wearknit cut)");
   knitout::DiagnosticSink proxy_sink;
-  const auto proxy = read_obj_file(proxy_path.string(), proxy_sink);
+  const auto proxy = read_stage_mesh(proxy_path.string(), proxy_sink);
   if (!proxy) fail(proxy_path, "A003", "unreadable: " + first_error(proxy_sink));
 
   struct Polyline {
@@ -299,16 +296,16 @@ void load(Model& m, const fs::path& dir) {
         auto u = e.at(0).get<std::int64_t>();
         auto v = e.at(1).get<std::int64_t>();
         for (std::int64_t w : {u, v}) {
-          if (w < 0 || static_cast<std::size_t>(w) >= proxy->vertices.size())
+          if (w < 0 || static_cast<std::size_t>(w) >= proxy->positions.size())
             fail(cuts_path, "A004",
                  "arc " + std::to_string(info.id) + ": vertex " + std::to_string(w) +
                      " is not a vertex of " + proxy_path.filename().string() + " (" +
-                     std::to_string(proxy->vertices.size()) + " vertices)");
+                     std::to_string(proxy->positions.size()) + " vertices)");
         }
         if (!first && static_cast<std::uint32_t>(v) == last) std::swap(u, v);
         if (first || static_cast<std::uint32_t>(u) != last)
-          line.points.push_back(proxy->vertices[static_cast<std::size_t>(u)]);
-        line.points.push_back(proxy->vertices[static_cast<std::size_t>(v)]);
+          line.points.push_back(proxy->positions[static_cast<std::size_t>(u)]);
+        line.points.push_back(proxy->positions[static_cast<std::size_t>(v)]);
         last = static_cast<std::uint32_t>(v);
         first = false;
       }
@@ -1204,7 +1201,7 @@ std::string draw_3d(const Model& m, const std::optional<PolygonMesh>& wearer,
   };
   for (const auto& p : m.mesh.positions) grow(p);
   if (wearer) {
-    for (const auto& p : wearer->vertices) grow(p);
+    for (const auto& p : wearer->positions) grow(p);
   }
   const Eigen::Vector3d centre = 0.5 * (lo + hi);
   const double radius = std::max(0.5 * (hi - lo).norm(), 1e-9);
@@ -1283,8 +1280,8 @@ std::string draw_3d(const Model& m, const std::optional<PolygonMesh>& wearer,
     if (wearer) {
       for (const auto& face : wearer->faces) {
         for (std::size_t k = 1; k + 1 < face.size(); ++k)
-          triangle(wearer->vertices[at(face[0])], wearer->vertices[at(face[k])],
-                   wearer->vertices[at(face[k + 1])], {0.62, 0.68, 0.78}, 0);
+          triangle(wearer->positions[at(face[0])], wearer->positions[at(face[k])],
+                   wearer->positions[at(face[k + 1])], {0.62, 0.68, 0.78}, 0);
       }
     }
     for (const StitchFace& face : m.mesh.faces) {
@@ -1353,7 +1350,7 @@ void prepare(Guide& g, const fs::path& plan_dir, const std::string& wearer_path)
   load(g.model, plan_dir);
   if (!wearer_path.empty()) {
     knitout::DiagnosticSink sink;
-    g.wearer = read_obj_file(wearer_path, sink);
+    g.wearer = read_stage_mesh(wearer_path, sink);
     if (!g.wearer) fail(wearer_path, "A005", "the wearer cannot be read: " + first_error(sink));
   }
   g.lines = order_lines(g.model);

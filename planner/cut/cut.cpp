@@ -10,15 +10,12 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "planner/common/index.hpp"
 #include "planner/common/union_find.hpp"
 
 namespace planner {
 
 namespace {
-
-std::size_t at(int i) {
-  return static_cast<std::size_t>(i);
-}
 
 // Crossing a side of direction d leaves a counter-clockwise unit square
 // through that side: the +u side is the bottom one, so the neighbour lies at
@@ -108,7 +105,7 @@ void build_disc(CutMesh& cut) {
   const int nv = q.num_vertices();
   std::vector<int> id(at(q.num_halfedges()), -1);
   std::vector<bool> taken(at(nv), false);
-  cut.disc = SurfaceMesh{};
+  cut.disc = PolygonMesh{};
   cut.disc.positions.resize(at(nv));
   cut.disc_source.resize(at(nv));
   for (int v = 0; v < nv; ++v) {

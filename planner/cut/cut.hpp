@@ -79,7 +79,7 @@ struct CutMesh {
   std::vector<int> motorcycle_edges;        // per edge of Q: how many motorcycles crossed it
   // The disc: the faces of Q in the same order and corner order, with the
   // vertices along cuts duplicated. disc_source[i] is Q's vertex of disc vertex i.
-  SurfaceMesh disc;
+  PolygonMesh disc;
   std::vector<int> disc_source;
   std::vector<CutArc> arcs;
   int seed_face = -1;

@@ -7,6 +7,7 @@
 #include <ostream>
 
 #include "knitout/output_file.hpp"
+#include "planner/common/index.hpp"
 #include "planner/mesh/mesh_io.hpp"
 
 namespace planner {
@@ -15,10 +16,6 @@ namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
-
-std::size_t at(int i) {
-  return static_cast<std::size_t>(i);
-}
 
 json cuts_json(const CutMesh& cut, const CutSummary& summary) {
   json arcs = json::array();

@@ -8,14 +8,11 @@
 #include <unordered_map>
 
 #include "knitout/output_file.hpp"
+#include "planner/common/index.hpp"
 
 namespace planner {
 
 namespace {
-
-std::size_t at(int i) {
-  return static_cast<std::size_t>(i);
-}
 
 cairo_status_t write_to_stream(void* closure, const unsigned char* data, unsigned int length) {
   auto* out = static_cast<std::ostream*>(closure);

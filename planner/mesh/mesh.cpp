@@ -17,7 +17,7 @@ std::uint64_t key(int a, int b) {
 
 }  // namespace
 
-HalfedgeMesh::HalfedgeMesh(SurfaceMesh mesh) : mesh_(std::move(mesh)) {
+HalfedgeMesh::HalfedgeMesh(PolygonMesh mesh) : mesh_(std::move(mesh)) {
   const std::size_t nf = mesh_.faces.size();
   face_start_.assign(nf + 1, 0);
   for (std::size_t f = 0; f < nf; ++f) {

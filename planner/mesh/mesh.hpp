@@ -1,5 +1,5 @@
-// Polygon meshes of the planner: the polygon soup as read from a file, and
-// the half-edge connectivity every algorithm of the cutting stage walks.
+// The planner's meshes: the one polygon-mesh type (a soup: positions and
+// faces), and the half-edge connectivity every algorithm walks.
 //
 // Units: positions are in millimetres once `load_mesh` has applied --units
 // and --scale (mesh_io.hpp); every length the planner reports is in mm.
@@ -11,19 +11,19 @@
 #include <string>
 #include <vector>
 
+#include "simulators/cloth/polygon_mesh.hpp"
+
 namespace planner {
 
 using Vec3 = Eigen::Vector3d;
 
 // Faces are lists of vertex indices (0-based), counter-clockwise seen from
 // outside. No connectivity is implied; `check_mesh` (mesh_io.hpp) says
-// whether a soup is a usable surface.
-struct SurfaceMesh {
-  std::vector<Vec3> positions;
-  std::vector<std::vector<int>> faces;
-};
+// whether a soup is a usable surface. The same type as the cloth
+// simulation's garment (simulators/cloth/polygon_mesh.hpp).
+using PolygonMesh = cloth::PolygonMesh;
 
-// Half-edge connectivity over a SurfaceMesh that is an oriented 2-manifold
+// Half-edge connectivity over a PolygonMesh that is an oriented 2-manifold
 // (with or without boundary). Half-edge ids are dense: the half-edges of face
 // f are face_start(f) .. face_start(f) + degree(f) - 1 in the face's corner
 // order, half-edge face_start(f) + i going from corner i to corner i + 1.
@@ -32,9 +32,9 @@ struct SurfaceMesh {
 class HalfedgeMesh {
  public:
   HalfedgeMesh() = default;
-  explicit HalfedgeMesh(SurfaceMesh mesh);
+  explicit HalfedgeMesh(PolygonMesh mesh);
 
-  const SurfaceMesh& polygons() const { return mesh_; }
+  const PolygonMesh& polygons() const { return mesh_; }
   const Vec3& position(int v) const { return mesh_.positions[static_cast<std::size_t>(v)]; }
 
   int num_vertices() const { return static_cast<int>(mesh_.positions.size()); }
@@ -76,7 +76,7 @@ class HalfedgeMesh {
   int euler_characteristic() const { return num_vertices() - num_edges() + num_faces(); }
 
  private:
-  SurfaceMesh mesh_;
+  PolygonMesh mesh_;
   std::vector<int> face_start_{0};
   std::vector<int> face_;
   std::vector<int> from_;

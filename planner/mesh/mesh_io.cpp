@@ -30,7 +30,7 @@ using OpenMesh::IO::BaseImporter;
 // exactly what the checks must name.
 class SoupImporter final : public BaseImporter {
  public:
-  explicit SoupImporter(SurfaceMesh& mesh) : mesh_(mesh) {}
+  explicit SoupImporter(PolygonMesh& mesh) : mesh_(mesh) {}
 
   VertexHandle add_vertex(const OpenMesh::Vec3f& p) override {
     return add_vertex(OpenMesh::Vec3d(p[0], p[1], p[2]));
@@ -91,7 +91,7 @@ class SoupImporter final : public BaseImporter {
   size_t n_edges() const override { return 0; }
 
  private:
-  SurfaceMesh& mesh_;
+  PolygonMesh& mesh_;
 };
 
 // OpenMesh prints its own complaints on std::cerr; ours are diagnostics.
@@ -171,7 +171,7 @@ std::optional<double> mm_per_unit(std::string_view units) {
   return std::nullopt;
 }
 
-std::optional<SurfaceMesh> read_polygon_soup(const std::string& path,
+std::optional<PolygonMesh> read_polygon_soup(const std::string& path,
                                              knitout::DiagnosticSink& sink) {
   const std::string ext = lower(std::filesystem::path(path).extension().string().substr(
       std::min<std::size_t>(1, std::filesystem::path(path).extension().string().size())));
@@ -186,7 +186,7 @@ std::optional<SurfaceMesh> read_polygon_soup(const std::string& path,
     sink.error(path, 0, 0, "P001", "cannot open file");
     return std::nullopt;
   }
-  SurfaceMesh mesh;
+  PolygonMesh mesh;
   SoupImporter importer(mesh);
   OpenMesh::IO::Options options;
   bool ok = false;
@@ -201,7 +201,7 @@ std::optional<SurfaceMesh> read_polygon_soup(const std::string& path,
   return mesh;
 }
 
-std::optional<SurfaceMesh> read_polygon_soup(std::istream& in, std::string_view extension,
+std::optional<PolygonMesh> read_polygon_soup(std::istream& in, std::string_view extension,
                                              const std::string& source,
                                              knitout::DiagnosticSink& sink) {
   const std::string ext = lower(extension);
@@ -209,7 +209,7 @@ std::optional<SurfaceMesh> read_polygon_soup(std::istream& in, std::string_view 
     sink.error(source, 0, 0, "P001", "cannot read a mesh in format '" + ext + "'");
     return std::nullopt;
   }
-  SurfaceMesh mesh;
+  PolygonMesh mesh;
   SoupImporter importer(mesh);
   OpenMesh::IO::Options options;
   bool ok = false;
@@ -224,7 +224,7 @@ std::optional<SurfaceMesh> read_polygon_soup(std::istream& in, std::string_view 
   return mesh;
 }
 
-bool check_mesh(const SurfaceMesh& mesh, const std::string& source, knitout::DiagnosticSink& sink) {
+bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::DiagnosticSink& sink) {
   const std::size_t errors_before = sink.error_count();
   const int nv = static_cast<int>(mesh.positions.size());
   const int nf = static_cast<int>(mesh.faces.size());
@@ -426,7 +426,7 @@ bool check_mesh(const SurfaceMesh& mesh, const std::string& source, knitout::Dia
   return sink.error_count() == errors_before;
 }
 
-std::optional<SurfaceMesh> load_mesh(const std::string& path, const LoadParams& params,
+std::optional<PolygonMesh> load_mesh(const std::string& path, const LoadParams& params,
                                      knitout::DiagnosticSink& sink) {
   auto mesh = read_polygon_soup(path, sink);
   if (!mesh) return std::nullopt;
@@ -436,7 +436,7 @@ std::optional<SurfaceMesh> load_mesh(const std::string& path, const LoadParams& 
   return mesh;
 }
 
-void write_obj(std::ostream& out, const SurfaceMesh& mesh, std::string_view header) {
+void write_obj(std::ostream& out, const PolygonMesh& mesh, std::string_view header) {
   std::size_t start = 0;
   while (start < header.size()) {
     std::size_t end = header.find('\n', start);
@@ -456,7 +456,7 @@ void write_obj(std::ostream& out, const SurfaceMesh& mesh, std::string_view head
   }
 }
 
-Vec3 bounding_box_size(const SurfaceMesh& mesh) {
+Vec3 bounding_box_size(const PolygonMesh& mesh) {
   if (mesh.positions.empty()) return Vec3::Zero();
   Vec3 lo = mesh.positions.front();
   Vec3 hi = lo;

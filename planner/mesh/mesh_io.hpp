@@ -30,26 +30,26 @@ std::optional<double> mm_per_unit(std::string_view units);
 
 // Reads the polygon soup of `path` (format from the extension) with no
 // checks. Reports P001 and returns nullopt when the file cannot be read.
-std::optional<SurfaceMesh> read_polygon_soup(const std::string& path,
+std::optional<PolygonMesh> read_polygon_soup(const std::string& path,
                                              knitout::DiagnosticSink& sink);
 // Same from a stream; `extension` is "obj", "off", "ply" or "stl".
-std::optional<SurfaceMesh> read_polygon_soup(std::istream& in, std::string_view extension,
+std::optional<PolygonMesh> read_polygon_soup(std::istream& in, std::string_view extension,
                                              const std::string& source,
                                              knitout::DiagnosticSink& sink);
 
 // Reports every reason the soup is not one connected, consistently oriented
 // 2-manifold surface with boundary (at most 10 messages per kind, then a
 // count). Returns true when there is none.
-bool check_mesh(const SurfaceMesh& mesh, const std::string& source, knitout::DiagnosticSink& sink);
+bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::DiagnosticSink& sink);
 
 // read_polygon_soup + check_mesh + unit conversion to millimetres.
-std::optional<SurfaceMesh> load_mesh(const std::string& path, const LoadParams& params,
+std::optional<PolygonMesh> load_mesh(const std::string& path, const LoadParams& params,
                                      knitout::DiagnosticSink& sink);
 
 // Plain OBJ: `# header` lines, v lines with %.9g, f lines (1-based).
-void write_obj(std::ostream& out, const SurfaceMesh& mesh, std::string_view header = {});
+void write_obj(std::ostream& out, const PolygonMesh& mesh, std::string_view header = {});
 
 // Axis-aligned bounding box extent (max - min), zero for an empty mesh.
-Vec3 bounding_box_size(const SurfaceMesh& mesh);
+Vec3 bounding_box_size(const PolygonMesh& mesh);
 
 }  // namespace planner

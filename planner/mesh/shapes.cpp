@@ -7,8 +7,8 @@
 
 namespace planner {
 
-SurfaceMesh quad_ellipsoid(double radius, double z_stretch, int n) {
-  SurfaceMesh mesh;
+PolygonMesh quad_ellipsoid(double radius, double z_stretch, int n) {
+  PolygonMesh mesh;
   std::map<std::array<int, 3>, int> index;  // cube lattice point -> vertex
   auto vertex = [&](const std::array<int, 3>& k) {
     const auto [it, fresh] = index.try_emplace(k, static_cast<int>(mesh.positions.size()));

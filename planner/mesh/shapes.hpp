@@ -10,6 +10,6 @@ namespace planner {
 // projected onto the sphere of `radius` and stretched by `z_stretch` along
 // z. Eight valence-3 vertices (the cube's corners); faces counter-clockwise
 // seen from outside.
-SurfaceMesh quad_ellipsoid(double radius, double z_stretch, int n);
+PolygonMesh quad_ellipsoid(double radius, double z_stretch, int n);
 
 }  // namespace planner

@@ -16,7 +16,7 @@ namespace planner {
 
 namespace {
 
-double corner_angle_at(const SurfaceMesh& mesh, const std::vector<int>& face, std::size_t i) {
+double corner_angle_at(const PolygonMesh& mesh, const std::vector<int>& face, std::size_t i) {
   const std::size_t n = face.size();
   const Vec3& p = mesh.positions[static_cast<std::size_t>(face[i])];
   const Vec3 a = mesh.positions[static_cast<std::size_t>(face[(i + 1) % n])] - p;
@@ -49,7 +49,7 @@ double misalignment(const Vec3& e, const Vec3& o, const Vec3& n) {
 
 // Pairs adjacent triangles into quads whose four sides follow the field,
 // best pairs first; unpaired triangles stay.
-int pair_triangles(SurfaceMesh& mesh, int field_iterations) {
+int pair_triangles(PolygonMesh& mesh, int field_iterations) {
   const HalfedgeMesh he(mesh);
   std::vector<Vec3> normals;
   const std::vector<Vec3> field = orientation_field(he, normals, field_iterations);
@@ -118,7 +118,7 @@ int pair_triangles(SurfaceMesh& mesh, int field_iterations) {
   return paired;
 }
 
-bool is_valid_proxy(const SurfaceMesh& mesh) {
+bool is_valid_proxy(const PolygonMesh& mesh) {
   for (const auto& face : mesh.faces) {
     if (face.size() > 4) return false;
   }
@@ -128,7 +128,7 @@ bool is_valid_proxy(const SurfaceMesh& mesh) {
 
 }  // namespace
 
-double total_area(const SurfaceMesh& mesh) {
+double total_area(const PolygonMesh& mesh) {
   double area = 0.0;
   for (const auto& face : mesh.faces) {
     Vec3 n = Vec3::Zero();
@@ -141,13 +141,13 @@ double total_area(const SurfaceMesh& mesh) {
   return area;
 }
 
-bool is_quad_dominant(const SurfaceMesh& mesh) {
+bool is_quad_dominant(const PolygonMesh& mesh) {
   std::size_t quads = 0;
   for (const auto& face : mesh.faces) quads += face.size() == 4 ? 1 : 0;
   return 2 * quads > mesh.faces.size();
 }
 
-int split_polygons(SurfaceMesh& mesh) {
+int split_polygons(PolygonMesh& mesh) {
   // A diagonal must not repeat an edge the mesh already has (it would be
   // shared by three faces then): such corners are passed over.
   std::set<std::pair<int, int>> edges;
@@ -210,7 +210,7 @@ int split_polygons(SurfaceMesh& mesh) {
   return split;
 }
 
-ProxyResult make_proxy(const SurfaceMesh& input, const ProxyParams& params) {
+ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params) {
   ProxyResult result;
   if (is_quad_dominant(input)) {
     result.mesh = input;
@@ -240,7 +240,7 @@ ProxyResult make_proxy(const SurfaceMesh& input, const ProxyParams& params) {
     // before falling back to pairing triangles; the first failure is kept
     // to report when none works.
     const double base = result.edge_mm;
-    std::optional<SurfaceMesh> extracted;
+    std::optional<PolygonMesh> extracted;
     RemeshStats stats;
     std::string first_failure;
     for (const double factor : {1.0, 0.99, 1.01, 0.97, 1.03}) {

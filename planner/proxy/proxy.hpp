@@ -27,7 +27,7 @@ struct ProxyParams {
 };
 
 struct ProxyResult {
-  SurfaceMesh mesh;  // quads and triangles only
+  PolygonMesh mesh;  // quads and triangles only
   bool remeshed = false;
   double edge_mm = 0.0;  // the target edge length used (remeshed), else the mean edge length
   int polygons_split = 0;
@@ -46,15 +46,15 @@ struct ProxyResult {
 };
 
 // More than half of the faces are quads.
-bool is_quad_dominant(const SurfaceMesh& mesh);
+bool is_quad_dominant(const PolygonMesh& mesh);
 
 // Sum of the faces' areas (each polygon by its vector area).
-double total_area(const SurfaceMesh& mesh);
+double total_area(const PolygonMesh& mesh);
 
 // Splits every face with more than 4 corners in place; returns how many were split.
-int split_polygons(SurfaceMesh& mesh);
+int split_polygons(PolygonMesh& mesh);
 
 // The proxy Q of a checked mesh (mesh_io.hpp check_mesh).
-ProxyResult make_proxy(const SurfaceMesh& input, const ProxyParams& params);
+ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params);
 
 }  // namespace planner

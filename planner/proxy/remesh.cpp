@@ -17,6 +17,7 @@
 #include <unordered_map>
 
 #include "knitout/diagnostic.hpp"
+#include "planner/common/index.hpp"
 #include "planner/common/union_find.hpp"
 #include "planner/mesh/mesh_io.hpp"
 
@@ -24,13 +25,9 @@ namespace planner {
 
 namespace {
 
-std::size_t at(int i) {
-  return static_cast<std::size_t>(i);
-}
-
 // Vertices no face uses are dropped; the others are numbered in the order
 // the faces first use them.
-void drop_unused_vertices(SurfaceMesh& mesh) {
+void drop_unused_vertices(PolygonMesh& mesh) {
   std::vector<int> index(mesh.positions.size(), -1);
   std::vector<Vec3> kept;
   for (auto& face : mesh.faces) {
@@ -55,7 +52,7 @@ struct TriTraits : public OpenMesh::DefaultTraits {
 };
 using TriMesh = OpenMesh::TriMesh_ArrayKernelT<TriTraits>;
 
-TriMesh to_trimesh(const SurfaceMesh& input) {
+TriMesh to_trimesh(const PolygonMesh& input) {
   TriMesh tri;
   std::vector<TriMesh::VertexHandle> handles;
   handles.reserve(input.positions.size());
@@ -73,9 +70,9 @@ TriMesh to_trimesh(const SurfaceMesh& input) {
   return tri;
 }
 
-SurfaceMesh from_trimesh(TriMesh& tri) {
+PolygonMesh from_trimesh(TriMesh& tri) {
   tri.garbage_collection();
-  SurfaceMesh out;
+  PolygonMesh out;
   out.positions.reserve(tri.n_vertices());
   for (const auto vh : tri.vertices()) {
     const auto& p = tri.point(vh);
@@ -95,7 +92,7 @@ SurfaceMesh from_trimesh(TriMesh& tri) {
 // thinner than aspect ratio 10 unless it was already: slower, and used only
 // when the plain pass leaves a zero-area sliver (which happened at one scale
 // of a mesh and not at another, and made the samples depend on the units).
-SurfaceMesh decimate(const SurfaceMesh& input, double target, bool guard_aspect) {
+PolygonMesh decimate(const PolygonMesh& input, double target, bool guard_aspect) {
   TriMesh tri = to_trimesh(input);
   tri.update_face_normals();
   tri.update_vertex_normals();
@@ -126,9 +123,9 @@ SurfaceMesh decimate(const SurfaceMesh& input, double target, bool guard_aspect)
 
 // `decimate`, checked; once more with the aspect guard if the plain pass
 // leaves a degenerate face; nothing if that fails too.
-std::optional<SurfaceMesh> checked_decimation(const SurfaceMesh& input, double target) {
+std::optional<PolygonMesh> checked_decimation(const PolygonMesh& input, double target) {
   for (const bool guard_aspect : {false, true}) {
-    SurfaceMesh decimated = decimate(input, target, guard_aspect);
+    PolygonMesh decimated = decimate(input, target, guard_aspect);
     knitout::DiagnosticSink sink;
     if (check_mesh(decimated, "resample", sink)) return decimated;
   }
@@ -140,7 +137,7 @@ std::optional<SurfaceMesh> checked_decimation(const SurfaceMesh& input, double t
 // samples, and a sample edge longer than half a lattice step can span two
 // lattice steps, which the extraction cannot connect (Instant Meshes
 // subdivides its input the same way before solving).
-SurfaceMesh split_long_edges(const SurfaceMesh& input, double max_length) {
+PolygonMesh split_long_edges(const PolygonMesh& input, double max_length) {
   TriMesh tri = to_trimesh(input);
   const double limit = max_length * max_length;
   for (bool split = true; split;) {
@@ -159,7 +156,7 @@ SurfaceMesh split_long_edges(const SurfaceMesh& input, double max_length) {
   return from_trimesh(tri);
 }
 
-double mean_edge_length(const SurfaceMesh& mesh) {
+double mean_edge_length(const PolygonMesh& mesh) {
   double total = 0.0;
   std::size_t count = 0;
   for (const auto& face : mesh.faces) {
@@ -173,8 +170,8 @@ double mean_edge_length(const SurfaceMesh& mesh) {
 }
 
 // 1-to-4 midpoint subdivision of a triangle mesh (positions unchanged).
-SurfaceMesh subdivide(const SurfaceMesh& mesh) {
-  SurfaceMesh out;
+PolygonMesh subdivide(const PolygonMesh& mesh) {
+  PolygonMesh out;
   out.positions = mesh.positions;
   std::map<std::pair<int, int>, int> midpoint;
   auto mid = [&](int a, int b) {
@@ -200,8 +197,8 @@ SurfaceMesh subdivide(const SurfaceMesh& mesh) {
 
 }  // namespace
 
-SurfaceMesh resample(const SurfaceMesh& input, double target_mm, double keep_above) {
-  SurfaceMesh tri;
+PolygonMesh resample(const PolygonMesh& input, double target_mm, double keep_above) {
+  PolygonMesh tri;
   tri.positions = input.positions;
   for (const auto& face : input.faces) {
     for (std::size_t i = 1; i + 1 < face.size(); ++i)
@@ -215,14 +212,14 @@ SurfaceMesh resample(const SurfaceMesh& input, double target_mm, double keep_abo
   if (mean_edge_length(tri) < keep_above * target_mm) {
     // OpenMesh keeps the topology; should a collapse still leave a fold, the
     // finer mesh is the safe answer.
-    std::optional<SurfaceMesh> decimated = checked_decimation(tri, target_mm);
+    std::optional<PolygonMesh> decimated = checked_decimation(tri, target_mm);
     if (decimated) tri = std::move(*decimated);
   }
   return tri;
 }
 
-SurfaceMesh sample_surface(const SurfaceMesh& input, double target_mm) {
-  SurfaceMesh tri = split_long_edges(resample(input, target_mm), 1.25 * target_mm);
+PolygonMesh sample_surface(const PolygonMesh& input, double target_mm) {
+  PolygonMesh tri = split_long_edges(resample(input, target_mm), 1.25 * target_mm);
   std::size_t edges = 0;
   std::size_t short_edges = 0;
   for (const auto& face : tri.faces) {
@@ -234,7 +231,7 @@ SurfaceMesh sample_surface(const SurfaceMesh& input, double target_mm) {
     }
   }
   if (short_edges * 5 <= edges) return tri;
-  std::optional<SurfaceMesh> decimated = checked_decimation(tri, 0.7 * target_mm);
+  std::optional<PolygonMesh> decimated = checked_decimation(tri, 0.7 * target_mm);
   if (!decimated) return tri;
   return split_long_edges(*decimated, 1.25 * target_mm);
 }
@@ -485,7 +482,7 @@ std::pair<Vec3, Vec3> compatible_positions(const Vec3& p0, const Vec3& n0, const
 // the vertex itself, is then moved 2% of the way to its fan's centre, so
 // the sheets no longer touch: later stages that weld the cut mesh's two
 // sides by position (the wearability stage) must not merge them again.
-void split_pinched_vertices(SurfaceMesh& mesh) {
+void split_pinched_vertices(PolygonMesh& mesh) {
   std::vector<int> start(mesh.faces.size() + 1, 0);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     start[f + 1] = start[f] + static_cast<int>(mesh.faces[f].size());
@@ -544,7 +541,7 @@ void split_pinched_vertices(SurfaceMesh& mesh) {
 
 }  // namespace
 
-int collapse_folded_quads(SurfaceMesh& mesh, double ratio) {
+int collapse_folded_quads(PolygonMesh& mesh, double ratio) {
   int collapsed = 0;
   for (bool changed = true; changed;) {
     changed = false;
@@ -613,7 +610,7 @@ namespace {
 
 // Folded quads welded, and any vertex the welds leave pinched split again,
 // until none is left. Returns how many quads were welded.
-int weld_folds(SurfaceMesh& mesh, double ratio) {
+int weld_folds(PolygonMesh& mesh, double ratio) {
   int welded = 0;
   for (int folds; (folds = collapse_folded_quads(mesh, ratio)) > 0;) {
     welded += folds;
@@ -624,7 +621,7 @@ int weld_folds(SurfaceMesh& mesh, double ratio) {
 
 // Crumbs of a few faces left where the lattice folded are dropped; a
 // second big component is kept (and fails the topology check).
-void keep_largest_component(SurfaceMesh& mesh) {
+void keep_largest_component(PolygonMesh& mesh) {
   UnionFind vertices(mesh.positions.size());
   for (const auto& face : mesh.faces) {
     for (std::size_t i = 1; i < face.size(); ++i) vertices.unite(face[0], face[i]);
@@ -773,7 +770,7 @@ void merge_short_edges(double below, std::vector<Vec3>& position, std::vector<Ve
   adjacent = std::move(merged_adjacent);
 }
 
-int fill_holes(SurfaceMesh& mesh, int keep, std::size_t max_corners) {
+int fill_holes(PolygonMesh& mesh, int keep, std::size_t max_corners) {
   std::map<std::pair<int, int>, int> directed;
   for (const auto& face : mesh.faces) {
     for (std::size_t i = 0; i < face.size(); ++i)
@@ -818,7 +815,7 @@ int fill_holes(SurfaceMesh& mesh, int keep, std::size_t max_corners) {
 
 }  // namespace
 
-std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
+std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input,
                                                 const RemeshParams& params, RemeshStats& stats) {
   const double s = params.edge_mm;
   // Samples about half a lattice step apart, so every lattice cell holds some.
@@ -941,7 +938,7 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
   };
   // Faces: from a -> b, turn to the neighbour of b just clockwise of a.
   std::map<std::pair<int, int>, bool> used;
-  SurfaceMesh out;
+  PolygonMesh out;
   out.positions = position;
   for (int a0 = 0; a0 < nc; ++a0) {
     for (int b0 : adjacent[at(a0)]) {
@@ -991,7 +988,7 @@ std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
       }
     }
   }
-  SurfaceMesh compact = std::move(out);
+  PolygonMesh compact = std::move(out);
   drop_unused_vertices(compact);
   split_pinched_vertices(compact);
   stats.folds_removed += weld_folds(compact, params.fold_ratio);

@@ -21,14 +21,14 @@ namespace planner {
 // mean edge is still below keep_above * target_mm is decimated (OpenMesh's
 // decimater, shortest edges first; its link condition keeps the topology,
 // normal flips are refused). The result is checked like any input.
-SurfaceMesh resample(const SurfaceMesh& input, double target_mm, double keep_above = 0.5);
+PolygonMesh resample(const PolygonMesh& input, double target_mm, double keep_above = 0.5);
 
 // The samples the remesher's fields live on: `resample`, then every edge
 // longer than 1.25 * target_mm split at its midpoint; where a fifth of the
 // edges or more are shorter than half the target (slivers of a CAD mesh cut
 // up by subdivision and splits) they are collapsed and the long ones split
 // again. Scaling the input and the target together scales the result.
-SurfaceMesh sample_surface(const SurfaceMesh& input, double target_mm);
+PolygonMesh sample_surface(const PolygonMesh& input, double target_mm);
 
 // Of the four directions o, n x o, -o, -n x o: the one closest to `target`.
 Vec3 closest_representative(const Vec3& o, const Vec3& n, const Vec3& target);
@@ -68,13 +68,13 @@ struct RemeshStats {
 // and they are not both on the boundary (which would pinch it). The welded
 // vertex sits at their midpoint (at the boundary one's place when one is).
 // Returns how many quads were removed.
-int collapse_folded_quads(SurfaceMesh& mesh, double ratio);
+int collapse_folded_quads(PolygonMesh& mesh, double ratio);
 
 // A quad-dominant mesh of `input` (a checked surface; polygons are
 // triangulated) with the same Euler characteristic and number of boundary
 // loops, or nullopt (with stats.failure saying why) when the extraction did
 // not give one connected, consistently oriented manifold of that topology.
-std::optional<SurfaceMesh> field_aligned_remesh(const SurfaceMesh& input,
+std::optional<PolygonMesh> field_aligned_remesh(const PolygonMesh& input,
                                                 const RemeshParams& params, RemeshStats& stats);
 
 }  // namespace planner

@@ -9,16 +9,11 @@
 #include <string>
 
 #include "knitout/output_file.hpp"
+#include "planner/common/index.hpp"
 
 namespace planner {
 
-namespace {
-
-std::size_t at(int i) {
-  return static_cast<std::size_t>(i);
-}
-
-}  // namespace
+namespace {}  // namespace
 
 std::vector<PieceLayout> piece_layouts(const Schedule& s) {
   std::vector<int> piece_of_row(s.rows.size(), kNone);

@@ -16,15 +16,10 @@
 #include <utility>
 
 #include "knitout/output_file.hpp"
+#include "planner/common/index.hpp"
 
 namespace planner {
-namespace {
-
-std::size_t at(int i) {
-  return static_cast<std::size_t>(i);
-}
-
-}  // namespace
+namespace {}  // namespace
 
 LabelledDisc labelled_disc(const CutMesh& cut) {
   LabelledDisc disc;

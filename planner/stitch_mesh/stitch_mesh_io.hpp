@@ -31,7 +31,7 @@ std::string draw_stitch_mesh(const StitchMesh& mesh, const std::string& png_path
 struct StitchMeshReport {
   StitchGauge gauge;
   StitchMeshFigures figures;
-  AnisoRemeshStats stats;
+  StitchMeshStats stats;
   StabilityCounts stability;
   OffSurface off_surface;
   double disc_area_mm2 = 0;

@@ -21,16 +21,13 @@
 #include <unordered_set>
 #include <utility>
 
+#include "planner/common/index.hpp"
 #include "simulators/cloth/sdf.hpp"
 
 namespace planner {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-
-std::size_t at(int i) {
-  return static_cast<std::size_t>(i);
-}
 
 std::uint64_t key(int a, int b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
@@ -134,7 +131,7 @@ std::array<Vec3, 3> hat_gradients(const LabelledDisc& disc, const Triangle& t) {
 // the cotangent Laplacian), then straightening fits towards unit speed
 // until t settles.
 Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
-                         const AnisoRemeshParams& params, AnisoRemeshStats& stats) {
+                         const StitchMeshParams& params, StitchMeshStats& stats) {
   const int n = static_cast<int>(disc.positions.size());
   std::vector<Eigen::Triplet<double>> entries;
   std::vector<std::array<Vec3, 3>> grads(tris.size());
@@ -211,7 +208,7 @@ Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
 // number of rows). Returns the mapped value per vertex; `bands` receives the
 // number of rows.
 Eigen::VectorXd row_levels(const LabelledDisc& disc, const std::vector<Triangle>& tris,
-                           const Eigen::VectorXd& t, const AnisoRemeshParams& params, int& bands) {
+                           const Eigen::VectorXd& t, const StitchMeshParams& params, int& bands) {
   const double t_max = t.maxCoeff();
   const int slabs = std::max(16, 8 * static_cast<int>(std::ceil(t_max)));
   const double width = t_max > 0 ? t_max / slabs : 1.0;
@@ -781,7 +778,7 @@ void join_boundary_runs(Chain& chain) {
 
 struct Builder {
   const LabelledDisc& disc;
-  const AnisoRemeshParams& params;
+  const StitchMeshParams& params;
   const Pieces& pieces;
   StitchMesh mesh;
   std::unordered_map<int, int> anchor;  // piece vertex -> stitch vertex
@@ -791,7 +788,7 @@ struct Builder {
   std::vector<std::vector<int>> curve_samples;
   std::vector<int> curve_first;
   std::vector<std::string> problems;
-  AnisoRemeshStats stats;
+  StitchMeshStats stats;
   // Bottom sides (as the row above walks them) of increases and decreases.
   std::unordered_set<std::uint64_t> shaped_below;
   // Course-out sides (as the row above walks them) -> the face below.
@@ -2269,16 +2266,16 @@ std::vector<std::string> check_disc(const LabelledDisc& disc) {
   return problems;
 }
 
-AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemeshParams& params) {
+StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshParams& params) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::string> input_problems = check_disc(disc);
   if (!input_problems.empty()) {
-    throw std::invalid_argument("remesh_anisotropic: " + input_problems.front());
+    throw std::invalid_argument("make_stitch_mesh: " + input_problems.front());
   }
   if (!(params.course_mm > 0) || !(params.wale_mm > 0)) {
-    throw std::invalid_argument("remesh_anisotropic: course_mm and wale_mm must be positive");
+    throw std::invalid_argument("make_stitch_mesh: course_mm and wale_mm must be positive");
   }
-  AnisoRemeshResult result;
+  StitchMeshResult result;
   std::vector<Triangle> tris = triangulate(disc);
   Eigen::VectorXd t = row_time(disc, tris, params, result.stats);
   result.stats.solve_seconds = seconds_since(start);

@@ -35,15 +35,15 @@
 #include <string>
 #include <vector>
 
+#include "planner/mesh/mesh.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
 
 namespace planner {
 
 // Side directions as in cut.hpp: 0 = +u (course), 1 = +v (wale), 2 = -u, 3 = -v,
 // in the face's own frame; faces are counter-clockwise seen from the front.
-struct LabelledDisc {
-  std::vector<Eigen::Vector3d> positions;  // mm
-  std::vector<std::vector<int>> faces;
+// The disc's surface (positions in mm) with its side labels.
+struct LabelledDisc : PolygonMesh {
   std::vector<std::vector<int>> directions;  // per face, per side (side i: corner i -> i+1)
   // Optional: per face, per side, the cut-arc of a boundary side (kNoArc if none).
   std::vector<std::vector<std::int32_t>> arcs;
@@ -53,7 +53,7 @@ struct LabelledDisc {
 // faces, faces with no course or no wale side). Empty when usable.
 std::vector<std::string> check_disc(const LabelledDisc& disc);
 
-struct AnisoRemeshParams {
+struct StitchMeshParams {
   double course_mm = 42.0 / 40.0;
   double wale_mm = 115.0 / 40.0;
   // Step 1: at most this many fits towards unit row speed after the fit to
@@ -93,7 +93,7 @@ struct AnisoRemeshParams {
   int relax_sweeps = 150;
 };
 
-struct AnisoRemeshStats {
+struct StitchMeshStats {
   int rows = 0;            // K
   int strips = 0;          // band components
   int lenses_skipped = 0;  // strips of one side on each chain (nothing between them)
@@ -122,9 +122,9 @@ struct AnisoRemeshStats {
   double total_seconds = 0;
 };
 
-struct AnisoRemeshResult {
+struct StitchMeshResult {
   StitchMesh mesh;
-  AnisoRemeshStats stats;
+  StitchMeshStats stats;
   // Why the mesh is not a valid stitch mesh (strips of unexpected shape, and
   // every line of `check`); empty on success.
   std::vector<std::string> problems;
@@ -132,7 +132,7 @@ struct AnisoRemeshResult {
 
 // Never throws on bad geometry: problems are returned. The input must pass
 // check_disc (a programming error otherwise: std::invalid_argument).
-AnisoRemeshResult remesh_anisotropic(const LabelledDisc& disc, const AnisoRemeshParams& params);
+StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshParams& params);
 
 // Figures of a stitch mesh, for tests and reports.
 struct EdgeLengthStats {

@@ -108,7 +108,7 @@ std::optional<CutFolder> read_cut_folder(const std::string& dir, knitout::Diagno
   const std::string mesh_path = (fs::path(dir) / "cut-mesh.obj").string();
   const std::string cuts_path = (fs::path(dir) / "cuts.json").string();
   const std::size_t errors_before = sink.error_count();
-  const auto cut_mesh = read_obj_file(mesh_path, sink);
+  const auto cut_mesh = read_stage_mesh(mesh_path, sink);
   json cuts;
   {
     std::ifstream in(cuts_path);

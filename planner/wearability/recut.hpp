@@ -35,7 +35,7 @@ struct CutFolder {
   nlohmann::json cuts;  // cuts.json as read (annotated later)
 };
 
-// Reads DIR/cut-mesh.obj and DIR/cuts.json (read_obj_file, read_cover_mesh)
+// Reads DIR/cut-mesh.obj and DIR/cuts.json (read_stage_mesh, read_cover_mesh)
 // and subdivides a garment of fewer than `min_vertices` vertices for the
 // cloth (refined_for_cloth; 0 = as read).
 // Diagnostics: W001–W004, W010, W011 (docs/diagnostics.md).

@@ -70,7 +70,7 @@ std::uint64_t fingerprint(const CoverMesh& mesh) {
   auto put = [&](const void* data, std::size_t size) {
     bytes.append(static_cast<const char*>(data), size);
   };
-  for (const Vec3& v : mesh.vertices) {
+  for (const Vec3& v : mesh.positions) {
     const double xyz[3] = {v.x(), v.y(), v.z()};
     put(xyz, sizeof xyz);
   }
@@ -101,7 +101,7 @@ const char* to_string(Label label) {
 
 std::vector<std::string> validate(const CoverMesh& mesh) {
   std::vector<std::string> problems;
-  const int n = static_cast<int>(mesh.vertices.size());
+  const int n = static_cast<int>(mesh.positions.size());
   std::unordered_map<std::uint64_t, int> edge_faces;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& face = mesh.faces[f];
@@ -159,7 +159,7 @@ CoverArc arc_from_path(const std::vector<int>& path, std::string name) {
 }
 
 std::vector<int> shortest_edge_path(const CoverMesh& mesh, int from, int to) {
-  const std::size_t n = mesh.vertices.size();
+  const std::size_t n = mesh.positions.size();
   std::vector<std::vector<int>> neighbours(n);
   for (const auto& face : mesh.faces) {
     for (std::size_t i = 0; i < face.size(); ++i) {
@@ -180,7 +180,7 @@ std::vector<int> shortest_edge_path(const CoverMesh& mesh, int from, int to) {
     if (d > distance[v]) continue;
     if (v == to) break;
     for (int w : neighbours[v]) {
-      const double candidate = d + (mesh.vertices[v] - mesh.vertices[w]).norm();
+      const double candidate = d + (mesh.positions[v] - mesh.positions[w]).norm();
       if (candidate < distance[w]) {
         distance[w] = candidate;
         previous[w] = v;
@@ -198,8 +198,8 @@ std::vector<int> shortest_edge_path(const CoverMesh& mesh, int from, int to) {
 int nearest_vertex(const CoverMesh& mesh, const Vec3& point) {
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
-  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-    const double d = (mesh.vertices[v] - point).squaredNorm();
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const double d = (mesh.positions[v] - point).squaredNorm();
     if (d < best_distance) {
       best_distance = d;
       best = static_cast<int>(v);
@@ -253,20 +253,20 @@ std::vector<int> weld_vertices(std::vector<Vec3>& vertices, std::vector<std::vec
 
 CoverMesh subdivided(const CoverMesh& mesh) {
   CoverMesh result;
-  result.vertices = mesh.vertices;
+  result.positions = mesh.positions;
   std::unordered_map<std::uint64_t, int> midpoint;
   auto middle = [&](int a, int b) {
     const auto [it, inserted] =
-        midpoint.emplace(edge_key(a, b), static_cast<int>(result.vertices.size()));
-    if (inserted) result.vertices.push_back(0.5 * (mesh.vertices[a] + mesh.vertices[b]));
+        midpoint.emplace(edge_key(a, b), static_cast<int>(result.positions.size()));
+    if (inserted) result.positions.push_back(0.5 * (mesh.positions[a] + mesh.positions[b]));
     return it->second;
   };
   for (const auto& face : mesh.faces) {
     const std::size_t n = face.size();
     Vec3 centre = Vec3::Zero();
-    for (int v : face) centre += mesh.vertices[v];
-    const int c = static_cast<int>(result.vertices.size());
-    result.vertices.push_back(centre / static_cast<double>(n));
+    for (int v : face) centre += mesh.positions[v];
+    const int c = static_cast<int>(result.positions.size());
+    result.positions.push_back(centre / static_cast<double>(n));
     for (std::size_t i = 0; i < n; ++i) {
       const int previous = face[(i + n - 1) % n], here = face[i], next = face[(i + 1) % n];
       result.faces.push_back({here, middle(here, next), c, middle(previous, here)});
@@ -285,14 +285,14 @@ CoverMesh subdivided(const CoverMesh& mesh) {
 }
 
 CoverMesh refined_for_cloth(CoverMesh mesh, int min_vertices) {
-  for (int step = 0; step < 4 && static_cast<int>(mesh.vertices.size()) < min_vertices; ++step) {
+  for (int step = 0; step < 4 && static_cast<int>(mesh.positions.size()) < min_vertices; ++step) {
     mesh = subdivided(mesh);
   }
   return mesh;
 }
 
-cloth::ClothMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
-                           std::vector<int>* source) {
+cloth::PolygonMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
+                             std::vector<int>* source) {
   std::unordered_map<std::uint64_t, bool> cut;
   for (std::size_t a = 0; a < mesh.arcs.size(); ++a) {
     if (a < open.size() && open[a]) {
@@ -340,7 +340,7 @@ cloth::ClothMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
       corners.unite(corner_b, twin_b);
     }
   }
-  cloth::ClothMesh result;
+  cloth::PolygonMesh result;
   std::unordered_map<int, int> copy_of_class;
   if (source != nullptr) source->clear();
   result.faces.resize(mesh.faces.size());
@@ -351,7 +351,7 @@ cloth::ClothMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
       const auto [it, inserted] =
           copy_of_class.emplace(root, static_cast<int>(result.positions.size()));
       if (inserted) {
-        result.positions.push_back(mesh.vertices[face[i]]);
+        result.positions.push_back(mesh.positions[face[i]]);
         if (source != nullptr) source->push_back(face[i]);
       }
       result.faces[f].push_back(it->second);
@@ -369,16 +369,16 @@ std::vector<bool> EliminationResult::open() const {
 CoverMesh dressed(const CoverMesh& mesh, const cloth::SignedDistanceField& wearer,
                   const cloth::ClothParams& params) {
   CoverMesh result = mesh;
-  cloth::ClothMesh garment{result.vertices, {}};
+  cloth::PolygonMesh garment{result.positions, {}};
   cloth::dress(garment, wearer, params.clearance);
-  result.vertices = std::move(garment.positions);
+  result.positions = std::move(garment.positions);
   return result;
 }
 
 TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
                             const cloth::SignedDistanceField& wearer,
                             const WearabilityParams& params, std::uint64_t seed) {
-  const cloth::ClothMesh garment = open_cuts(dressed_mesh, open);
+  const cloth::PolygonMesh garment = open_cuts(dressed_mesh, open);
   const int trials = std::max(params.trials, 1);
   const int workers = std::min(cloth::resolve_threads(params.threads), trials);
   cloth::ClothParams simulation = params.cloth;

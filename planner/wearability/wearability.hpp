@@ -42,6 +42,7 @@
 #include <string_view>
 #include <vector>
 
+#include "planner/mesh/mesh.hpp"
 #include "simulators/cloth/cloth.hpp"
 #include "simulators/cloth/sdf.hpp"
 
@@ -51,12 +52,12 @@ using cloth::Vec3;
 
 struct CoverArc {
   std::string name;                       // for reports; may be empty
-  std::vector<std::array<int, 2>> edges;  // vertex pairs of CoverMesh::vertices
+  std::vector<std::array<int, 2>> edges;  // vertex pairs of the CoverMesh's positions
 };
 
-struct CoverMesh {
-  std::vector<Vec3> vertices;           // welded: one vertex per point of the garment
-  std::vector<std::vector<int>> faces;  // polygons, counter-clockwise seen from outside
+// The garment: its surface, welded (one vertex per point of the garment,
+// faces counter-clockwise seen from outside), and its cut-arcs.
+struct CoverMesh : PolygonMesh {
   std::vector<CoverArc> arcs;
 };
 
@@ -95,8 +96,8 @@ CoverMesh refined_for_cloth(CoverMesh mesh, int min_vertices);
 // The garment with the arcs where open[arc] is true split open: every vertex
 // gets one copy per group of its faces that stays connected across closed
 // edges. `source` (optional) receives the CoverMesh vertex of each copy.
-cloth::ClothMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
-                           std::vector<int>* source = nullptr);
+cloth::PolygonMesh open_cuts(const CoverMesh& mesh, const std::vector<bool>& open,
+                             std::vector<int>* source = nullptr);
 
 struct TestResult;
 

@@ -1,130 +1,39 @@
 #include "planner/wearability/wearability_io.hpp"
 
 #include <Eigen/Geometry>
-#include <charconv>
+#include <filesystem>
 #include <fstream>
-#include <istream>
 #include <ostream>
-#include <sstream>
+
+#include "planner/mesh/mesh_io.hpp"
 
 namespace planner {
 
-namespace {
-
-bool parse_double(std::string_view text, double& value) {
-  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
-  return result.ec == std::errc() && result.ptr == text.data() + text.size();
-}
-
-bool parse_long(std::string_view text, long& value) {
-  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
-  return result.ec == std::errc() && result.ptr == text.data() + text.size();
-}
-
-}  // namespace
-
-std::optional<PolygonMesh> read_obj(std::istream& in, const std::string& source,
-                                    knitout::DiagnosticSink& sink) {
-  PolygonMesh mesh;
-  struct PendingFace {
-    std::vector<long> indices;
-    std::uint32_t line;
-  };
-  std::vector<PendingFace> pending;
-  std::string line;
-  std::uint32_t number = 0;
-  const std::size_t errors_before = sink.error_count();
-  while (std::getline(in, line) && !sink.saturated()) {
-    ++number;
-    std::istringstream words(line);
-    std::string keyword;
-    if (!(words >> keyword) || keyword[0] == '#') continue;
-    if (keyword == "v") {
-      std::string x, y, z;
-      Vec3 p;
-      if (!(words >> x >> y >> z) || !parse_double(x, p.x()) || !parse_double(y, p.y()) ||
-          !parse_double(z, p.z())) {
-        sink.error(source, number, 0, "W001", "vertex needs three numbers: '" + line + "'");
-        continue;
-      }
-      mesh.vertices.push_back(p);
-    } else if (keyword == "f") {
-      PendingFace face{{}, number};
-      std::string corner;
-      bool ok = true;
-      while (words >> corner) {
-        long index = 0;
-        if (!parse_long(corner.substr(0, corner.find('/')), index) || index == 0) {
-          sink.error(source, number, 0, "W001", "bad face index '" + corner + "'");
-          ok = false;
-          break;
-        }
-        // Negative indices count back from the vertices read so far.
-        face.indices.push_back(index > 0 ? index - 1
-                                         : static_cast<long>(mesh.vertices.size()) + index);
-      }
-      if (!ok) continue;
-      if (face.indices.size() < 3) {
-        sink.error(source, number, 0, "W001", "face needs at least three vertices");
-        continue;
-      }
-      pending.push_back(std::move(face));
-    }
-  }
-  for (const auto& face : pending) {
-    std::vector<int> indices;
-    for (long index : face.indices) {
-      if (index < 0 || index >= static_cast<long>(mesh.vertices.size())) {
-        sink.error(source, face.line, 0, "W002",
-                   "face refers to vertex " + std::to_string(index + 1) + ", but the file has " +
-                       std::to_string(mesh.vertices.size()));
-        indices.clear();
-        break;
-      }
-      indices.push_back(static_cast<int>(index));
-    }
-    if (!indices.empty()) mesh.faces.push_back(std::move(indices));
-  }
-  if (sink.error_count() > errors_before) return std::nullopt;
-  if (mesh.faces.empty()) {
-    sink.error(source, 0, 0, "W003", "mesh has no faces");
-    return std::nullopt;
-  }
-  return mesh;
-}
-
-std::optional<PolygonMesh> read_obj_file(const std::string& path, knitout::DiagnosticSink& sink) {
-  std::ifstream in(path);
-  if (!in) {
+std::optional<PolygonMesh> read_stage_mesh(const std::string& path, knitout::DiagnosticSink& sink) {
+  if (!std::filesystem::is_regular_file(path)) {
     sink.error(path, 0, 0, "W004", "cannot open file");
     return std::nullopt;
   }
-  return read_obj(in, path, sink);
-}
-
-void write_obj(std::ostream& out, const std::vector<Vec3>& vertices,
-               const std::vector<std::vector<int>>& faces) {
-  out.precision(9);
-  for (const Vec3& v : vertices) out << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-  for (const auto& face : faces) {
-    out << 'f';
-    for (int v : face) out << ' ' << v + 1;
-    out << '\n';
+  auto mesh = read_polygon_soup(path, sink);
+  if (mesh && mesh->faces.empty()) {
+    sink.error(path, 0, 0, "W003", "mesh has no faces");
+    return std::nullopt;
   }
+  return mesh;
 }
 
 std::optional<CoverMesh> read_cover_mesh(const PolygonMesh& cut_mesh, const nlohmann::json& cuts,
                                          const std::string& cuts_source,
                                          knitout::DiagnosticSink& sink) {
   CoverMesh mesh;
-  mesh.vertices = cut_mesh.vertices;
+  mesh.positions = cut_mesh.positions;
   mesh.faces = cut_mesh.faces;
   Eigen::AlignedBox3d box;
-  for (const Vec3& v : mesh.vertices) box.extend(v);
+  for (const Vec3& v : mesh.positions) box.extend(v);
   // Both sides of a split cut sit at the same point; 1e-9 of the size
   // merges them and nothing else.
   const std::vector<int> weld =
-      weld_vertices(mesh.vertices, mesh.faces, 1e-9 * std::max(box.diagonal().norm(), 1e-300));
+      weld_vertices(mesh.positions, mesh.faces, 1e-9 * std::max(box.diagonal().norm(), 1e-300));
   const std::size_t errors_before = sink.error_count();
   if (!cuts.is_object() || !cuts.contains("arcs") || !cuts["arcs"].is_array()) {
     sink.error(cuts_source, 0, 0, "W010", "expected an object with an array \"arcs\"");

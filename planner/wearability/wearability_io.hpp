@@ -1,8 +1,5 @@
 // Reading and writing what the wearability stage consumes and produces.
 //
-// OBJ: `v x y z` and `f i j k ...` lines (1-based or negative indices,
-// `i/t/n` forms accepted, everything else ignored).
-//
 // cuts.json (written by `wearknit cut`, read and extended by `wearknit
 // wearability`; docs/wearability.md has the full description):
 //
@@ -23,22 +20,15 @@
 #include <string>
 
 #include "knitout/diagnostic.hpp"
+#include "planner/mesh/mesh.hpp"
 #include "planner/wearability/wearability.hpp"
 
 namespace planner {
 
-struct PolygonMesh {
-  std::vector<Vec3> vertices;
-  std::vector<std::vector<int>> faces;
-};
-
-// Diagnostics (docs/diagnostics.md): W001 malformed OBJ line, W002 face
-// index out of range, W003 mesh without faces.
-std::optional<PolygonMesh> read_obj(std::istream& in, const std::string& source,
-                                    knitout::DiagnosticSink& sink);
-std::optional<PolygonMesh> read_obj_file(const std::string& path, knitout::DiagnosticSink& sink);
-void write_obj(std::ostream& out, const std::vector<Vec3>& vertices,
-               const std::vector<std::vector<int>>& faces);
+// A mesh the wearability stage reads (the cut mesh, the wearer): any format
+// read_polygon_soup reads (planner/mesh/mesh_io.hpp), with its diagnostics;
+// W004 when the file cannot be opened, W003 when it has no faces.
+std::optional<PolygonMesh> read_stage_mesh(const std::string& path, knitout::DiagnosticSink& sink);
 
 // The CoverMesh of a cut-mesh and its cuts.json document. Diagnostics: W010
 // cuts.json is not the expected shape, W011 an arc edge that is not an edge

@@ -57,7 +57,7 @@ void colour_pairs(std::size_t vertex_count, const std::vector<std::array<int, 2>
 
 }  // namespace
 
-std::vector<Spring> build_springs(const ClothMesh& mesh) {
+std::vector<Spring> build_springs(const PolygonMesh& mesh) {
   const int n = static_cast<int>(mesh.positions.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     if (mesh.faces[f].size() < 3) {
@@ -135,7 +135,7 @@ std::vector<int> global_directions(std::uint64_t seed, int count) {
   return axes;
 }
 
-ClothSimulation::ClothSimulation(const ClothMesh& garment, const SignedDistanceField& wearer,
+ClothSimulation::ClothSimulation(const PolygonMesh& garment, const SignedDistanceField& wearer,
                                  const ClothParams& params)
     : mesh_(garment), wearer_(wearer), params_(params), scale_(wearer.scale()) {
   if (params_.iterations < 1) throw std::invalid_argument("iterations must be at least 1");
@@ -364,7 +364,7 @@ StripResult ClothSimulation::run(
   return result;
 }
 
-void dress(ClothMesh& mesh, const SignedDistanceField& wearer, double clearance) {
+void dress(PolygonMesh& mesh, const SignedDistanceField& wearer, double clearance) {
   const double target = clearance * wearer.scale();
   for (Vec3& x : mesh.positions) {
     // The gradient of an interpolated field is only approximately the

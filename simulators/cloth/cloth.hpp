@@ -33,16 +33,13 @@
 #include <functional>
 #include <vector>
 
+#include "simulators/cloth/polygon_mesh.hpp"
 #include "simulators/cloth/sdf.hpp"
 
 namespace cloth {
 
-// A polygon mesh: the garment with its open cuts already split (vertices on
+// The garment is a PolygonMesh with its open cuts already split (vertices on
 // either side of an open cut are distinct).
-struct ClothMesh {
-  std::vector<Vec3> positions;
-  std::vector<std::vector<int>> faces;
-};
 
 enum class SpringKind : std::uint8_t { Stretch, Shear, Bend };
 
@@ -57,7 +54,7 @@ struct Spring {
 // course line). Rest lengths are the current distances. Each vertex pair
 // appears once (the strongest kind wins). Throws std::invalid_argument on a
 // face index out of range.
-std::vector<Spring> build_springs(const ClothMesh& mesh);
+std::vector<Spring> build_springs(const PolygonMesh& mesh);
 
 struct ClothParams {
   // Step size. 10 ms with the velocity cap below lets a vertex cross at most
@@ -124,7 +121,7 @@ Vec3 axis_direction(int axis);
 class ClothSimulation {
  public:
   // The rest shape is `garment` as given; positions are taken from it.
-  ClothSimulation(const ClothMesh& garment, const SignedDistanceField& wearer,
+  ClothSimulation(const PolygonMesh& garment, const SignedDistanceField& wearer,
                   const ClothParams& params);
 
   // One time step with the global force along `global_axis` (0..5).
@@ -146,11 +143,11 @@ class ClothSimulation {
   Vec3 centroid() const;
   const std::vector<Vec3>& positions() const { return x_; }
   const std::vector<Spring>& springs() const { return springs_; }
-  const ClothMesh& mesh() const { return mesh_; }
+  const PolygonMesh& mesh() const { return mesh_; }
   std::uint64_t projections() const { return projections_; }
 
  private:
-  ClothMesh mesh_;
+  PolygonMesh mesh_;
   const SignedDistanceField& wearer_;
   ClothParams params_;
   double scale_ = 1.0;
@@ -178,6 +175,6 @@ class ClothSimulation {
 // Pushes every vertex of `mesh` out of the wearer until it is `clearance`
 // (a fraction of the wearer's scale) away: a garment modelled on the
 // wearer's own surface starts just outside it.
-void dress(ClothMesh& mesh, const SignedDistanceField& wearer, double clearance);
+void dress(PolygonMesh& mesh, const SignedDistanceField& wearer, double clearance);
 
 }  // namespace cloth

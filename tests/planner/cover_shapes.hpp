@@ -23,13 +23,13 @@ inline CoverMesh sphere_mesh(double radius, int segments, int rings,
   CoverMesh mesh;
   const bool closed = max_polar_angle >= std::numbers::pi;
   const int last_ring = closed ? rings - 1 : rings;  // ring indices 1..last_ring
-  mesh.vertices.push_back({0, 0, radius});
+  mesh.positions.push_back({0, 0, radius});
   for (int i = 1; i <= last_ring; ++i) {
     const double theta = max_polar_angle * i / rings;
     for (int j = 0; j < segments; ++j) {
       const double phi = 2 * std::numbers::pi * j / segments;
-      mesh.vertices.push_back(radius * Vec3(std::sin(theta) * std::cos(phi),
-                                            std::sin(theta) * std::sin(phi), std::cos(theta)));
+      mesh.positions.push_back(radius * Vec3(std::sin(theta) * std::cos(phi),
+                                             std::sin(theta) * std::sin(phi), std::cos(theta)));
     }
   }
   auto ring = [&](int i, int j) { return 1 + (i - 1) * segments + (j % segments); };
@@ -40,8 +40,8 @@ inline CoverMesh sphere_mesh(double radius, int segments, int rings,
     }
   }
   if (closed) {
-    const int south = static_cast<int>(mesh.vertices.size());
-    mesh.vertices.push_back({0, 0, -radius});
+    const int south = static_cast<int>(mesh.positions.size());
+    mesh.positions.push_back({0, 0, -radius});
     for (int j = 0; j < segments; ++j) {
       mesh.faces.push_back({ring(last_ring, j), south, ring(last_ring, j + 1)});
     }
@@ -63,7 +63,7 @@ inline CoverMesh torus_mesh(double major, double minor, int nu, int nv) {
     for (int j = 0; j < nv; ++j) {
       const double v = 2 * std::numbers::pi * j / nv;
       const double rho = major + minor * std::cos(v);
-      mesh.vertices.push_back({rho * std::cos(u), rho * std::sin(u), minor * std::sin(v)});
+      mesh.positions.push_back({rho * std::cos(u), rho * std::sin(u), minor * std::sin(v)});
     }
   }
   for (int i = 0; i < nu; ++i) {

@@ -23,7 +23,7 @@ CutParams cut_params(std::uint64_t seed, double cs = 1000, double co = 1) {
   return params;
 }
 
-CutMesh cut_of(const SurfaceMesh& mesh, std::uint64_t seed = 1, double cs = 1000, double co = 1) {
+CutMesh cut_of(const PolygonMesh& mesh, std::uint64_t seed = 1, double cs = 1000, double co = 1) {
   return cut_surface(HalfedgeMesh(mesh), cut_params(seed, cs, co));
 }
 
@@ -38,7 +38,7 @@ std::set<int> disc_boundary_sources(const CutMesh& cut) {
 }
 
 TEST(LabelsTest, VanishingCornerIsTheMostAcuteCornerOfATriangle) {
-  SurfaceMesh mesh;
+  PolygonMesh mesh;
   mesh.positions = {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}};  // corner at vertex 0 is the sharpest
   mesh.faces = {{1, 2, 0}};
   const FieldLabels labels = label_field(HalfedgeMesh(mesh));
@@ -52,8 +52,8 @@ TEST(LabelsTest, VanishingCornerIsTheMostAcuteCornerOfATriangle) {
 
 // A 3 x 3 grid whose middle cell is two triangles split along the diagonal
 // a-c, with c pulled outwards so that both triangles are sharpest at c.
-SurfaceMesh grid_with_split_cell() {
-  SurfaceMesh mesh;
+PolygonMesh grid_with_split_cell() {
+  PolygonMesh mesh;
   for (int y = 0; y < 4; ++y) {
     for (int x = 0; x < 4; ++x) mesh.positions.push_back({double(x), double(y), 0.0});
   }
@@ -183,7 +183,7 @@ TEST(CutTest, StraightnessWeightPutsCutsOnMotorcycleEdges) {
     }
     return all == 0 ? 0.0 : static_cast<double>(on) / all;
   };
-  const SurfaceMesh cube = test_meshes::cube(6);
+  const PolygonMesh cube = test_meshes::cube(6);
   double with = 0, without = 0;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     with += fraction_on_motorcycles(cut_of(cube, seed, 1000, 0));
@@ -194,7 +194,7 @@ TEST(CutTest, StraightnessWeightPutsCutsOnMotorcycleEdges) {
 }
 
 TEST(CutTest, SameSeedSameCutOtherSeedOtherSeedFace) {
-  const SurfaceMesh cube = test_meshes::cube(5);
+  const PolygonMesh cube = test_meshes::cube(5);
   const CutMesh a = cut_of(cube, 7);
   const CutMesh b = cut_of(cube, 7);
   EXPECT_EQ(a.cut_edge, b.cut_edge);

@@ -96,7 +96,7 @@ TEST(MeshIoTest, RejectsZeroAreaFace) {
 }
 
 TEST(MeshIoTest, RejectsFaceUsingAVertexTwice) {
-  SurfaceMesh mesh;
+  PolygonMesh mesh;
   mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   mesh.faces = {{0, 1, 2, 1}, {0, 2, 3}};
   knitout::DiagnosticSink sink;

@@ -16,7 +16,7 @@ namespace planner {
 namespace {
 
 TEST(ProxyTest, QuadDominantMeansMoreThanHalfQuads) {
-  SurfaceMesh mesh = test_meshes::grid(2, 1);
+  PolygonMesh mesh = test_meshes::grid(2, 1);
   EXPECT_TRUE(is_quad_dominant(mesh));
   mesh.positions.emplace_back(3, 0, 0);
   mesh.faces.push_back({2, 6, 5});
@@ -30,7 +30,7 @@ TEST(ProxyTest, PentagonIsSplitThroughItsLargestCorner) {
   // vertex 3) and 141.3 degrees (vertex 4, the largest). Of the two
   // diagonals from vertex 4, 4-2 halves its corner best (51.3 / 90 degrees
   // against 45 / 96.3 for 4-1): a quad 4-0-1-2 and a triangle 4-2-3.
-  SurfaceMesh mesh;
+  PolygonMesh mesh;
   mesh.positions = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0.8, 3, 0}, {0, 2, 0}};
   mesh.faces = {{0, 1, 2, 3, 4}};
   EXPECT_EQ(split_polygons(mesh), 1);
@@ -40,14 +40,14 @@ TEST(ProxyTest, PentagonIsSplitThroughItsLargestCorner) {
 }
 
 TEST(ProxyTest, QuadsAndTrianglesAreNotSplit) {
-  SurfaceMesh mesh = test_meshes::grid(2, 2);
+  PolygonMesh mesh = test_meshes::grid(2, 2);
   const auto before = mesh.faces;
   EXPECT_EQ(split_polygons(mesh), 0);
   EXPECT_EQ(mesh.faces, before);
 }
 
 TEST(ProxyTest, HexagonBecomesTwoQuadsAndHeptagonQuadPlusPentagonSplit) {
-  SurfaceMesh hexagon;
+  PolygonMesh hexagon;
   const double pi = std::acos(-1.0);
   for (int i = 0; i < 6; ++i)
     hexagon.positions.emplace_back(std::cos(pi * i / 3), std::sin(pi * i / 3), 0);
@@ -57,7 +57,7 @@ TEST(ProxyTest, HexagonBecomesTwoQuadsAndHeptagonQuadPlusPentagonSplit) {
   EXPECT_EQ(hexagon.faces[0].size(), 4u);
   EXPECT_EQ(hexagon.faces[1].size(), 4u);
 
-  SurfaceMesh heptagon;
+  PolygonMesh heptagon;
   for (int i = 0; i < 7; ++i)
     heptagon.positions.emplace_back(std::cos(2 * pi * i / 7), std::sin(2 * pi * i / 7), 0);
   heptagon.faces = {{0, 1, 2, 3, 4, 5, 6}};
@@ -72,8 +72,8 @@ TEST(ProxyTest, HexagonBecomesTwoQuadsAndHeptagonQuadPlusPentagonSplit) {
 // A dart-shaped quad a d c b whose corners a and c are 0.05 apart while b
 // and d are 2 apart (a fold of the lattice), between two quads on the left
 // (x = -1) and two on the right (x = 1). `c_x` places c.
-SurfaceMesh quad_between_four(double c_x, bool with_sides = true) {
-  SurfaceMesh mesh;
+PolygonMesh quad_between_four(double c_x, bool with_sides = true) {
+  PolygonMesh mesh;
   mesh.positions = {{0, 0, 0},  {0.02, 1, 0}, {c_x, 0, 0}, {0.02, -1, 0}, {-1, 1, 0},
                     {-1, 0, 0}, {-1, -1, 0},  {1, 1, 0},   {1, 0, 0},     {1, -1, 0}};
   enum { a, b, c, d, p, q, r, s, t, u };
@@ -88,7 +88,7 @@ SurfaceMesh quad_between_four(double c_x, bool with_sides = true) {
 }
 
 TEST(ProxyTest, AFoldedQuadIsWeldedAlongItsShortDiagonal) {
-  SurfaceMesh mesh = quad_between_four(0.05);
+  PolygonMesh mesh = quad_between_four(0.05);
   knitout::DiagnosticSink sink;
   ASSERT_TRUE(check_mesh(mesh, "fold", sink));
   EXPECT_EQ(collapse_folded_quads(mesh, 0.1), 1);
@@ -113,8 +113,8 @@ TEST(ProxyTest, AFoldedQuadIsWeldedAlongItsShortDiagonal) {
 }
 
 TEST(ProxyTest, AQuadWithBothDiagonalsLongIsKept) {
-  SurfaceMesh mesh = quad_between_four(0.5);  // a rhombus, diagonals 0.5 and 2
-  const SurfaceMesh before = mesh;
+  PolygonMesh mesh = quad_between_four(0.5);  // a rhombus, diagonals 0.5 and 2
+  const PolygonMesh before = mesh;
   EXPECT_EQ(collapse_folded_quads(mesh, 0.1), 0);
   EXPECT_EQ(mesh.faces, before.faces);
   EXPECT_EQ(collapse_folded_quads(mesh, 0.3), 1) << "the ratio is the threshold";
@@ -123,13 +123,13 @@ TEST(ProxyTest, AQuadWithBothDiagonalsLongIsKept) {
 TEST(ProxyTest, AFoldedQuadWithBothShortCornersOnTheBoundaryIsKept) {
   // Alone, the dart's corners a and c are both on the boundary: welding them
   // would pinch the boundary into two loops through one vertex.
-  SurfaceMesh mesh = quad_between_four(0.05, false);
+  PolygonMesh mesh = quad_between_four(0.05, false);
   EXPECT_EQ(collapse_folded_quads(mesh, 0.1), 0);
   EXPECT_EQ(mesh.faces.size(), 1u);
 }
 
 TEST(ProxyTest, QuadDominantInputIsKept) {
-  const SurfaceMesh mesh = test_meshes::torus(8, 6);
+  const PolygonMesh mesh = test_meshes::torus(8, 6);
   const ProxyResult proxy = make_proxy(mesh, {});
   EXPECT_FALSE(proxy.remeshed);
   EXPECT_EQ(proxy.mesh.faces, mesh.faces);
@@ -137,7 +137,7 @@ TEST(ProxyTest, QuadDominantInputIsKept) {
 
 TEST(ProxyTest, TriangleInputIsRemeshedIntoQuadDominantSurfaceOfSameTopology) {
   // Triangulate a fine torus, then ask for a coarser proxy.
-  SurfaceMesh tri = test_meshes::torus(30, 12);
+  PolygonMesh tri = test_meshes::torus(30, 12);
   std::vector<std::vector<int>> faces;
   for (const auto& f : tri.faces) {
     faces.push_back({f[0], f[1], f[2]});
@@ -171,7 +171,7 @@ TEST(ProxyTest, AFailedExtractionIsTriedAgainAtNearbySpacings) {
                   "the sanitizers; the strict build runs this test";
 #endif
   knitout::DiagnosticSink sink;
-  std::optional<SurfaceMesh> mesh =
+  std::optional<PolygonMesh> mesh =
       load_mesh((shared / "meshes" / "mannequin.obj").string(), {}, sink);
   ASSERT_TRUE(mesh);
   const double scale = 100.0 / bounding_box_size(*mesh).maxCoeff() * 1.03;
@@ -199,15 +199,15 @@ TEST(ProxyTest, SamplingDoesNotDependOnTheUnits) {
                   "under the sanitizers; the strict build runs this test";
 #endif
   knitout::DiagnosticSink sink;
-  const std::optional<SurfaceMesh> unit =
+  const std::optional<PolygonMesh> unit =
       load_mesh((shared / "meshes" / "anchor.obj").string(), {}, sink);
   ASSERT_TRUE(unit);
-  SurfaceMesh large = *unit;
+  PolygonMesh large = *unit;
   for (Vec3& p : large.positions) p *= 100.0;
   // The remesher's sample spacing for each: 0.4 x sqrt(area / 3000).
-  auto spacing = [](const SurfaceMesh& mesh) { return 0.4 * std::sqrt(total_area(mesh) / 3000.0); };
-  const SurfaceMesh small_samples = sample_surface(*unit, spacing(*unit));
-  const SurfaceMesh large_samples = sample_surface(large, spacing(large));
+  auto spacing = [](const PolygonMesh& mesh) { return 0.4 * std::sqrt(total_area(mesh) / 3000.0); };
+  const PolygonMesh small_samples = sample_surface(*unit, spacing(*unit));
+  const PolygonMesh large_samples = sample_surface(large, spacing(large));
   const double ratio = static_cast<double>(large_samples.positions.size()) /
                        static_cast<double>(small_samples.positions.size());
   EXPECT_NEAR(ratio, 1.0, 0.05) << small_samples.positions.size() << " samples at 1 x, "

@@ -93,7 +93,7 @@ std::size_t subdivided_faces(const StitchMesh& mesh, const Schedule& s, const Pi
 // through gtest; `mesh` is set on success.
 void stitch_shared(const fs::path& file, const std::string& name, std::optional<StitchMesh>& mesh) {
   knitout::DiagnosticSink load_sink;
-  std::optional<SurfaceMesh> surface = load_mesh(file.string(), {}, load_sink);
+  std::optional<PolygonMesh> surface = load_mesh(file.string(), {}, load_sink);
   ASSERT_TRUE(surface) << file;
 #if defined(__SANITIZE_ADDRESS__)
   // The cut stage remeshes triangle input into its quad proxy first, about
@@ -122,7 +122,7 @@ void stitch_shared(const fs::path& file, const std::string& name, std::optional<
   ASSERT_TRUE(cut_back) << name << ": " << knitout::format(cut_sink.diagnostics().front());
   const LabelledDisc disc = labelled_disc(*cut_back);
   ASSERT_TRUE(check_disc(disc).empty()) << name << ": the cut is not a disc";
-  const AnisoRemeshResult stitched = remesh_anisotropic(disc, AnisoRemeshParams{});
+  const StitchMeshResult stitched = make_stitch_mesh(disc, StitchMeshParams{});
   if (!stitched.problems.empty()) {
     FAIL() << name << ": the stitch-mesh stage reports " << stitched.problems.size()
            << " problem(s), first: " << stitched.problems.front();

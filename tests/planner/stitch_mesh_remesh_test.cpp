@@ -23,11 +23,10 @@ namespace sd = stitch_discs;
 
 // Everything issue 8 asks of a stitch mesh made from a disc of known area;
 // returns the result for further checks.
-AnisoRemeshResult expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2,
-                                          const AnisoRemeshParams& params,
-                                          const std::string& name) {
+StitchMeshResult expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2,
+                                         const StitchMeshParams& params, const std::string& name) {
   SCOPED_TRACE(name);
-  AnisoRemeshResult result = remesh_anisotropic(disc, params);
+  StitchMeshResult result = make_stitch_mesh(disc, params);
   const StitchMesh& mesh = result.mesh;
   for (const std::string& p : result.problems) ADD_FAILURE() << p;
   EXPECT_TRUE(check(mesh).empty());
@@ -62,14 +61,14 @@ AnisoRemeshResult expect_good_stitch_mesh(const LabelledDisc& disc, double area_
   return result;
 }
 
-AnisoRemeshParams default_params() {
-  return AnisoRemeshParams{};
+StitchMeshParams default_params() {
+  return StitchMeshParams{};
 }
 
 TEST(StitchMeshRemeshTest, MeshesAFlatRectangleIntoKnitQuads) {
   const LabelledDisc disc = sd::rectangle(60, 40);
   expect_good_stitch_mesh(disc, sd::rectangle_area(60, 40), default_params(), "rectangle");
-  const StitchMeshFigures f = measure(remesh_anisotropic(disc, default_params()).mesh);
+  const StitchMeshFigures f = measure(make_stitch_mesh(disc, default_params()).mesh);
   // Straight rows of equal length: nothing but knit stitches.
   EXPECT_EQ(f.knit, f.faces);
 }
@@ -85,13 +84,12 @@ TEST(StitchMeshRemeshTest, MeshesAParallelogramWithSlantedSides) {
 
 // The disc meshed with rows ending in a point (tip_side_wales = 0) and with
 // the defaults; both valid, on the disc's boundary.
-std::pair<AnisoRemeshResult, AnisoRemeshResult> with_and_without_row_ends(
-    const LabelledDisc& disc) {
-  AnisoRemeshParams pointed = default_params();
+std::pair<StitchMeshResult, StitchMeshResult> with_and_without_row_ends(const LabelledDisc& disc) {
+  StitchMeshParams pointed = default_params();
   pointed.tip_side_wales = 0;
-  std::pair<AnisoRemeshResult, AnisoRemeshResult> out{remesh_anisotropic(disc, pointed),
-                                                      remesh_anisotropic(disc, default_params())};
-  for (const AnisoRemeshResult* r : {&out.first, &out.second}) {
+  std::pair<StitchMeshResult, StitchMeshResult> out{make_stitch_mesh(disc, pointed),
+                                                    make_stitch_mesh(disc, default_params())};
+  for (const StitchMeshResult* r : {&out.first, &out.second}) {
     EXPECT_TRUE(r->problems.empty());
     EXPECT_LT(sd::farthest_boundary_vertex(disc, r->mesh), 1e-6 * 60);
   }
@@ -207,7 +205,7 @@ TEST(StitchMeshRemeshTest, StitchesAlongAJaggedBoundaryKeepTheirWidth) {
     const double zig = t > 0.999 && column % 2 == 1 ? 0.9 : 0.0;
     return Eigen::Vector3d(60 * s, 30 * t + zig, 0.0);
   });
-  const AnisoRemeshResult result = remesh_anisotropic(disc, default_params());
+  const StitchMeshResult result = make_stitch_mesh(disc, default_params());
   EXPECT_TRUE(result.problems.empty());
   const double share = boundary_course_share(result.mesh);
   std::printf("[jagged] boundary course sides within 15%%: %.3f\n", share);
@@ -228,7 +226,7 @@ TEST(StitchMeshRemeshTest, CourseSidesAlongAnObliqueJaggedBoundaryAreChordsOfOne
     const double zig = t > 0.999 ? 2.0 * (hash - std::floor(hash)) : 0.0;
     return Eigen::Vector3d(60 * s, 30 * t + zig + 10 * s * t, 0.0);
   });
-  const AnisoRemeshResult result = remesh_anisotropic(disc, default_params());
+  const StitchMeshResult result = make_stitch_mesh(disc, default_params());
   EXPECT_TRUE(result.problems.empty());
   const double share = boundary_course_share(result.mesh);
   std::printf("[oblique jagged] boundary course sides within 15%%: %.3f\n", share);
@@ -286,7 +284,7 @@ TEST(StitchMeshRemeshTest, MeshesACylinderCutOpen) {
 TEST(StitchMeshRemeshTest, MeshesAConeWithDecreases) {
   const LabelledDisc disc = sd::cone(20, 10, 40);
   expect_good_stitch_mesh(disc, sd::cone_area(20, 10, 40), default_params(), "cone");
-  const StitchMeshFigures f = measure(remesh_anisotropic(disc, default_params()).mesh);
+  const StitchMeshFigures f = measure(make_stitch_mesh(disc, default_params()).mesh);
   // Rows shrink from ~120 to ~60 stitches going up: decreases, no increases.
   EXPECT_GT(f.decrease, 40);
   EXPECT_EQ(f.increase, 0);
@@ -303,10 +301,10 @@ TEST(StitchMeshRemeshTest, MeshesAHemisphereCap) {
 // 15%).
 TEST(StitchMeshRemeshTest, RelaxingBringsSidesToTheirLengthsAndKeepsTheStitches) {
   const LabelledDisc disc = sd::hemisphere(20);
-  AnisoRemeshParams zipped_params = default_params();
+  StitchMeshParams zipped_params = default_params();
   zipped_params.relax_sweeps = 0;
-  const AnisoRemeshResult zipped = remesh_anisotropic(disc, zipped_params);
-  const AnisoRemeshResult relaxed = remesh_anisotropic(disc, default_params());
+  const StitchMeshResult zipped = make_stitch_mesh(disc, zipped_params);
+  const StitchMeshResult relaxed = make_stitch_mesh(disc, default_params());
   EXPECT_EQ(zipped.stats.relax_sweeps, 0);
   EXPECT_GT(relaxed.stats.relax_sweeps, 0);
   EXPECT_LE(relaxed.stats.relax_sweeps, default_params().relax_sweeps);
@@ -409,7 +407,7 @@ LabelledDisc square_with_radial_centre(double side_mm, double radius_mm, int n) 
 
 TEST(StitchMeshRemeshTest, RowTimeWithAnInteriorPitIsLevelled) {
   const LabelledDisc disc = square_with_radial_centre(60, 15, 30);
-  const AnisoRemeshResult result = remesh_anisotropic(disc, default_params());
+  const StitchMeshResult result = make_stitch_mesh(disc, default_params());
   EXPECT_GT(result.stats.row_time_levelled, 0);
   for (const std::string& p : result.problems) ADD_FAILURE() << p;
   EXPECT_TRUE(check(result.mesh).empty());
@@ -423,7 +421,7 @@ TEST(StitchMeshRemeshTest, RowTimeWithAnInteriorPitIsLevelled) {
 // time is used as fitted.
 TEST(StitchMeshRemeshTest, RowTimeWithoutAnInteriorExtremumIsNotLevelled) {
   const LabelledDisc disc = square_with_radial_centre(60, 0, 30);
-  const AnisoRemeshResult result = remesh_anisotropic(disc, default_params());
+  const StitchMeshResult result = make_stitch_mesh(disc, default_params());
   EXPECT_EQ(result.stats.row_time_levelled, 0);
   EXPECT_TRUE(result.problems.empty());
 }
@@ -446,22 +444,22 @@ TEST(StitchMeshRemeshTest, StraighteningRunsUntilTheRowTimeSettles) {
   const double r1 = 90;
   const double angle = 4.5;
   const LabelledDisc disc = ring_sector(r0, r1, angle);
-  const AnisoRemeshParams params = default_params();
-  const AnisoRemeshResult settled =
+  const StitchMeshParams params = default_params();
+  const StitchMeshResult settled =
       expect_good_stitch_mesh(disc, angle / 2 * (r1 * r1 - r0 * r0), params, "ring sector");
   EXPECT_GT(settled.stats.straighten_fits, 8);
   EXPECT_LT(settled.stats.straighten_fits, params.straighten_iterations);
 
-  AnisoRemeshParams eight = params;
+  StitchMeshParams eight = params;
   eight.straighten_iterations = 8;
-  const AnisoRemeshResult stopped = remesh_anisotropic(disc, eight);
+  const StitchMeshResult stopped = make_stitch_mesh(disc, eight);
   EXPECT_EQ(stopped.stats.straighten_fits, 8);
   EXPECT_LT(measure(stopped.mesh).wale.within_15_percent, 0.9);
 
   // The price: rows further from the labels than the plain fit's.
-  AnisoRemeshParams none = params;
+  StitchMeshParams none = params;
   none.straighten_iterations = 0;
-  const AnisoRemeshResult labels_only = remesh_anisotropic(disc, none);
+  const StitchMeshResult labels_only = make_stitch_mesh(disc, none);
   EXPECT_EQ(labels_only.stats.straighten_fits, 0);
   EXPECT_GT(settled.stats.label_deviation_deg, labels_only.stats.label_deviation_deg + 10);
 }
@@ -469,7 +467,7 @@ TEST(StitchMeshRemeshTest, StraighteningRunsUntilTheRowTimeSettles) {
 // Labels that a row time follows exactly: the first straightening fit
 // changes nothing, and the rows keep the labels' direction.
 TEST(StitchMeshRemeshTest, StraighteningStopsAtOnceOnStraightLabels) {
-  const AnisoRemeshResult result = remesh_anisotropic(sd::rectangle(60, 40), default_params());
+  const StitchMeshResult result = make_stitch_mesh(sd::rectangle(60, 40), default_params());
   EXPECT_EQ(result.stats.straighten_fits, 1);
   EXPECT_LT(result.stats.label_deviation_deg, 0.1);
 }

@@ -58,7 +58,7 @@ struct Limits {
 
 struct Meshed {
   LabelledDisc disc;
-  AnisoRemeshResult result;
+  StitchMeshResult result;
 };
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -67,15 +67,15 @@ constexpr bool kSanitized = true;
 constexpr bool kSanitized = false;
 #endif
 
-std::optional<SurfaceMesh> load_shared(const std::filesystem::path& file) {
+std::optional<PolygonMesh> load_shared(const std::filesystem::path& file) {
   knitout::DiagnosticSink sink;
-  std::optional<SurfaceMesh> mesh = load_mesh(file.string(), {}, sink);
+  std::optional<PolygonMesh> mesh = load_mesh(file.string(), {}, sink);
   EXPECT_TRUE(mesh) << file;
   return mesh;
 }
 
 LabelledDisc cut_shared(const std::filesystem::path& file) {
-  std::optional<SurfaceMesh> mesh = load_shared(file);
+  std::optional<PolygonMesh> mesh = load_shared(file);
   if (!mesh) return {};
   const Vec3 size = bounding_box_size(*mesh);
   for (Vec3& p : mesh->positions) p *= 100.0 / size.maxCoeff();
@@ -96,7 +96,7 @@ LabelledDisc cut_shared(const std::filesystem::path& file) {
   // No quad of nil area is left where the lattice folded (each would put a
   // needle-thin spike into the cut boundary).
   if (!quad_input) {
-    SurfaceMesh welded = proxy.mesh;
+    PolygonMesh welded = proxy.mesh;
     EXPECT_EQ(collapse_folded_quads(welded, RemeshParams{}.fold_ratio), 0)
         << file << ": folded quads left in the proxy";
   }
@@ -122,7 +122,7 @@ const LabelledDisc& shared_disc(const std::filesystem::path& shared, const std::
 std::optional<std::string> too_slow_here(const std::filesystem::path& shared,
                                          const std::string& name) {
   if (!kSanitized) return std::nullopt;
-  const std::optional<SurfaceMesh> input = load_shared(shared / "meshes" / (name + ".obj"));
+  const std::optional<PolygonMesh> input = load_shared(shared / "meshes" / (name + ".obj"));
   if (!input || is_quad_dominant(*input)) return std::nullopt;
   return name +
          " is triangle input, which the cut stage remeshes (too slow under the "
@@ -141,7 +141,7 @@ void expect_valid(const Meshed& m) {
 
 void expect_sizes(const Meshed& m, const Limits& limits) {
   const StitchMeshFigures f = measure(m.result.mesh);
-  const AnisoRemeshParams p;
+  const StitchMeshParams p;
   EXPECT_NEAR(f.course.mean_mm / p.course_mm, 1.0, limits.mean);
   EXPECT_NEAR(f.wale.mean_mm / p.wale_mm, 1.0, limits.wale_mean);
   EXPECT_GE(f.course.within_15_percent, limits.within);
@@ -199,7 +199,7 @@ class StitchMeshSharedTest : public SharedDiscTest {};
 TEST_P(StitchMeshSharedTest, IsAValidDiscOfTheIssueSizes) {
   Meshed m;
   m.disc = disc();
-  m.result = remesh_anisotropic(m.disc, AnisoRemeshParams{});
+  m.result = make_stitch_mesh(m.disc, StitchMeshParams{});
   expect_valid(m);
   expect_sizes(m, Limits{});
 }
@@ -221,10 +221,10 @@ TEST_P(StitchMeshSharedGaugeTest, CoarseFlatAndTallStitchesGiveAValidDisc) {
   for (const auto& [course, wale] : std::vector<std::pair<double, double>>{
            {5, 5}, {8, 2}, {8, 8}, {12, 12}, {6, 12}, {10, 20}}) {
     SCOPED_TRACE(std::to_string(course) + " x " + std::to_string(wale) + " mm");
-    AnisoRemeshParams params;
+    StitchMeshParams params;
     params.course_mm = course;
     params.wale_mm = wale;
-    m.result = remesh_anisotropic(m.disc, params);
+    m.result = make_stitch_mesh(m.disc, params);
     expect_valid(m);
   }
 }
@@ -233,12 +233,12 @@ INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedGaugeTest, ::testing::ValuesIn(
                          test_name);
 
 // A cut mesh meshed with the defaults and with `other`, both valid.
-std::pair<Meshed, Meshed> defaults_and(const LabelledDisc& disc, const AnisoRemeshParams& other) {
+std::pair<Meshed, Meshed> defaults_and(const LabelledDisc& disc, const StitchMeshParams& other) {
   std::pair<Meshed, Meshed> both;
   both.first.disc = disc;
-  both.first.result = remesh_anisotropic(disc, AnisoRemeshParams{});
+  both.first.result = make_stitch_mesh(disc, StitchMeshParams{});
   both.second.disc = disc;
-  both.second.result = remesh_anisotropic(disc, other);
+  both.second.result = make_stitch_mesh(disc, other);
   expect_valid(both.first);
   expect_valid(both.second);
   return both;
@@ -251,12 +251,12 @@ std::pair<Meshed, Meshed> defaults_and(const LabelledDisc& disc, const AnisoReme
 class StitchMeshSharedSaddleTest : public SharedDiscTest {};
 
 TEST_P(StitchMeshSharedSaddleTest, SaddlesHeldOnALevelLeaveNoFan) {
-  AnisoRemeshParams off;
+  StitchMeshParams off;
   off.saddle_wales = 0;
   const auto [held, left] = defaults_and(disc(), off);
   EXPECT_EQ(left.result.stats.saddles_pinned, 0);
   EXPECT_GT(held.result.stats.saddles_pinned, 0);
-  const double wale = AnisoRemeshParams{}.wale_mm;
+  const double wale = StitchMeshParams{}.wale_mm;
   const double left_mean = measure(left.result.mesh).wale.mean_mm / wale;
   const double held_mean = measure(held.result.mesh).wale.mean_mm / wale;
   std::cout << "wale mean / target: " << left_mean << " left, " << held_mean << " held\n";
@@ -274,7 +274,7 @@ INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedSaddleTest,
 class StitchMeshSharedRulesTest : public SharedDiscTest {};
 
 TEST_P(StitchMeshSharedRulesTest, RulesOfThumbLeaveFewerUnstableShapings) {
-  AnisoRemeshParams no_rules;
+  StitchMeshParams no_rules;
   no_rules.stability_cost = 0;
   const auto [with_rules, sizes_only] = defaults_and(disc(), no_rules);
   const StabilityCounts before = count_stability_rules(sizes_only.result.mesh);

@@ -8,8 +8,8 @@
 namespace planner::test_meshes {
 
 // n x m quads in the plane z = 0, counter-clockwise seen from +z.
-inline SurfaceMesh grid(int n, int m) {
-  SurfaceMesh mesh;
+inline PolygonMesh grid(int n, int m) {
+  PolygonMesh mesh;
   for (int j = 0; j <= m; ++j) {
     for (int i = 0; i <= n; ++i) mesh.positions.emplace_back(i, j, 0.0);
   }
@@ -22,8 +22,8 @@ inline SurfaceMesh grid(int n, int m) {
 }
 
 // An n x m quad torus (genus 1, every vertex regular), outward normals.
-inline SurfaceMesh torus(int n, int m, double big = 3.0, double small = 1.0) {
-  SurfaceMesh mesh;
+inline PolygonMesh torus(int n, int m, double big = 3.0, double small = 1.0) {
+  PolygonMesh mesh;
   const double pi = std::acos(-1.0);
   for (int j = 0; j < m; ++j) {
     for (int i = 0; i < n; ++i) {
@@ -43,8 +43,8 @@ inline SurfaceMesh torus(int n, int m, double big = 3.0, double small = 1.0) {
 
 // The surface of the cube [0,k]^3 split into k x k quads per side (genus 0;
 // its 8 corners have 3 quads each: irregular).
-inline SurfaceMesh cube(int k) {
-  SurfaceMesh mesh;
+inline PolygonMesh cube(int k) {
+  PolygonMesh mesh;
   auto vertex = [&](const Vec3& p) {
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
       if ((mesh.positions[i] - p).norm() < 1e-9) return static_cast<int>(i);

@@ -174,7 +174,7 @@ TEST(WearabilityJournalTest, AnEliminationCutShortResumesWithTheSameLabelsAndTri
   const CoverMesh ring = torus_mesh(1.0, 0.4, 48, 24);
   cloth::SdfParams sdf;
   sdf.resolution = 32;
-  const cloth::SignedDistanceField field(ring.vertices, ring.faces, sdf);
+  const cloth::SignedDistanceField field(ring.positions, ring.faces, sdf);
   planner::WearabilityParams params;
   params.cloth.max_steps = 1500;
   params.trials = 2;

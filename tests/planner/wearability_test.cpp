@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "planner/mesh/mesh_io.hpp"
 #include "planner/wearability/wearability_io.hpp"
 #include "tests/planner/cover_shapes.hpp"
 #include "tests/test_support.hpp"
@@ -32,7 +33,7 @@ planner::WearabilityParams test_params() {
 cloth::SignedDistanceField field_of(const CoverMesh& mesh, int resolution = 32) {
   cloth::SdfParams params;
   params.resolution = resolution;
-  return cloth::SignedDistanceField(mesh.vertices, mesh.faces, params);
+  return cloth::SignedDistanceField(mesh.positions, mesh.faces, params);
 }
 
 const cloth::SignedDistanceField& sphere_field() {
@@ -65,7 +66,7 @@ TEST(WearabilityTest, OpenCutsSplitsAlongOpenArcsOnly) {
   EXPECT_EQ(disc.positions.size(), 325u);
   ASSERT_EQ(source.size(), 325u);
   for (std::size_t v = 0; v < source.size(); ++v) {
-    EXPECT_EQ(disc.positions[v], cover.vertices[source[v]]);
+    EXPECT_EQ(disc.positions[v], cover.positions[source[v]]);
   }
   // Only the meridian open: a tube along the big circle, 24 + 1 rings of 12.
   EXPECT_EQ(planner::open_cuts(cover, {true, false, false, false, false}).positions.size(), 300u);
@@ -90,7 +91,7 @@ TEST(WearabilityTest, SubdividingKeepsTheShapeTheTopologyAndTheArcs) {
   const CoverMesh fine = planner::subdivided(cover);
   ASSERT_TRUE(planner::validate(fine).empty()) << planner::validate(fine).front();
   // V' = V + E + F, F' = 4 F for quads; the Euler characteristic (0) stays.
-  EXPECT_EQ(fine.vertices.size(), 30u + 60u + 30u);
+  EXPECT_EQ(fine.positions.size(), 30u + 60u + 30u);
   EXPECT_EQ(fine.faces.size(), 120u);
   ASSERT_EQ(fine.arcs.size(), cover.arcs.size());
   for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
@@ -98,16 +99,16 @@ TEST(WearabilityTest, SubdividingKeepsTheShapeTheTopologyAndTheArcs) {
     EXPECT_EQ(fine.arcs[a].edges.size(), 2 * cover.arcs[a].edges.size());
   }
   // Old vertices keep their places; every new one is a midpoint or a centre.
-  for (std::size_t v = 0; v < cover.vertices.size(); ++v)
-    EXPECT_EQ(fine.vertices[v], cover.vertices[v]);
+  for (std::size_t v = 0; v < cover.positions.size(); ++v)
+    EXPECT_EQ(fine.positions[v], cover.positions[v]);
   // Opening both loops still gives one disc: the nu x nv torus grid cut open
   // is an (nu + 1) x (nv + 1) grid of vertices, 7 x 6 before and 13 x 11
   // after.
   EXPECT_EQ(planner::open_cuts(cover, {true, true, true}).positions.size(), 7u * 6u);
   EXPECT_EQ(planner::open_cuts(fine, {true, true, true}).positions.size(), 13u * 11u);
-  EXPECT_EQ(planner::refined_for_cloth(cover, 100).vertices.size(), 120u);
-  EXPECT_EQ(planner::refined_for_cloth(cover, 121).vertices.size(), 120u + 240u + 120u);
-  EXPECT_EQ(planner::refined_for_cloth(cover, 0).vertices.size(), 30u);
+  EXPECT_EQ(planner::refined_for_cloth(cover, 100).positions.size(), 120u);
+  EXPECT_EQ(planner::refined_for_cloth(cover, 121).positions.size(), 120u + 240u + 120u);
+  EXPECT_EQ(planner::refined_for_cloth(cover, 0).positions.size(), 30u);
 }
 
 TEST(WearabilityTest, ACoarseTorusCoverComesOffOnceSubdivided) {
@@ -128,7 +129,7 @@ TEST(WearabilityTest, WeldingASplitMeshRecoversTheCover) {
   std::vector<Vec3> vertices = disc.positions;
   std::vector<std::vector<int>> faces = disc.faces;
   const auto map = planner::weld_vertices(vertices, faces, 1e-9);
-  EXPECT_EQ(vertices.size(), cover.vertices.size());
+  EXPECT_EQ(vertices.size(), cover.positions.size());
   EXPECT_EQ(map.size(), disc.positions.size());
 }
 
@@ -306,13 +307,13 @@ planner::CoverArc arc_through(const CoverMesh& mesh, const std::vector<Vec3>& po
 TEST(WearabilityTest, TorusQdCoverSewsMeridianArcsAndLacesTheEquator) {
   WEARKNIT_REQUIRE_SHARED(shared);
   knitout::DiagnosticSink sink;
-  const auto mesh = planner::read_obj_file((shared / "meshes" / "torus-qd.obj").string(), sink);
+  const auto mesh = planner::read_stage_mesh((shared / "meshes" / "torus-qd.obj").string(), sink);
   ASSERT_TRUE(mesh) << sink.diagnostics().front().message;
   // torus-qd: axis z, tube centre radius 1, tube radius 0.25 (its bounding
   // box). The wearer is the mesh itself; the garment is its surface, cut by
   // the meridian loop at longitude 0, split into 2 arcs, and the outer
   // equator loop as a third arc: every arc open is a disc.
-  CoverMesh cover{mesh->vertices, mesh->faces, {}};
+  CoverMesh cover{*mesh, {}};
   const double pi = std::numbers::pi;
   auto meridian = [&](double v) { return Vec3(1.0 + 0.25 * std::cos(v), 0, 0.25 * std::sin(v)); };
   auto equator = [&](double u) { return Vec3(1.25 * std::cos(u), 1.25 * std::sin(u), 0); };
@@ -327,7 +328,7 @@ TEST(WearabilityTest, TorusQdCoverSewsMeridianArcsAndLacesTheEquator) {
   ASSERT_TRUE(planner::validate(cover).empty()) << planner::validate(cover).front();
   cloth::SdfParams sdf_params;
   sdf_params.resolution = 48;
-  const cloth::SignedDistanceField wearer(mesh->vertices, mesh->faces, sdf_params);
+  const cloth::SignedDistanceField wearer(mesh->positions, mesh->faces, sdf_params);
 
   auto params = test_params();
   const auto result = planner::eliminate(cover, wearer, params);
@@ -369,31 +370,22 @@ TEST(WearabilityIoTest, ReadsASplitCutMeshAndItsArcs) {
       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 1 0 0\nv 2 0 0\nv 1 1 0\nv 2 1 0\n"
       "f 1 2 4 3\nf 5 6 8 7\n");
   knitout::DiagnosticSink sink;
-  const auto mesh = planner::read_obj(obj, "cut-mesh.obj", sink);
+  const auto mesh = planner::read_polygon_soup(obj, "obj", "cut-mesh.obj", sink);
   ASSERT_TRUE(mesh);
   const auto cuts = nlohmann::json::parse(R"({"arcs": [{"id": 7, "edges": [[4, 6]]}]})");
   const auto cover = planner::read_cover_mesh(*mesh, cuts, "cuts.json", sink);
   ASSERT_TRUE(cover) << knitout::format(sink.diagnostics().front());
-  EXPECT_EQ(cover->vertices.size(), 6u);
+  EXPECT_EQ(cover->positions.size(), 6u);
   ASSERT_EQ(cover->arcs.size(), 1u);
   EXPECT_EQ(cover->arcs[0].name, "7");
   EXPECT_EQ(planner::open_cuts(*cover, {true}).positions.size(), 8u);
   EXPECT_EQ(planner::open_cuts(*cover, {false}).positions.size(), 6u);
 }
 
-TEST(WearabilityIoTest, ReportsBadInputWithCodes) {
-  std::istringstream obj("v 0 0 0\nv 1 0 0\nv 0 1 x\nf 1 2 9\n");
-  knitout::DiagnosticSink sink;
-  EXPECT_FALSE(planner::read_obj(obj, "m.obj", sink));
-  ASSERT_EQ(sink.diagnostics().size(), 2u);
-  EXPECT_EQ(knitout::format(sink.diagnostics()[0]),
-            "m.obj:3: error: [W001] vertex needs three numbers: 'v 0 1 x'");
-  EXPECT_EQ(knitout::format(sink.diagnostics()[1]),
-            "m.obj:4: error: [W002] face refers to vertex 9, but the file has 2");
-
+TEST(WearabilityIoTest, ReportsBadArcsWithCodes) {
   std::istringstream good("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   knitout::DiagnosticSink sink2;
-  const auto mesh = planner::read_obj(good, "m.obj", sink2);
+  const auto mesh = planner::read_polygon_soup(good, "obj", "m.obj", sink2);
   ASSERT_TRUE(mesh);
   EXPECT_FALSE(planner::read_cover_mesh(
       *mesh, nlohmann::json::parse(R"({"arcs": [{"edges": [[0, 5]]}]})"), "cuts.json", sink2));

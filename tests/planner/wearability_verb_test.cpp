@@ -8,6 +8,7 @@
 
 #include "planner/cut/cut.hpp"
 #include "planner/cut/cut_io.hpp"
+#include "planner/mesh/mesh_io.hpp"
 #include "planner/wearability/recut.hpp"
 #include "planner/wearability/wearability_io.hpp"
 #include "tests/planner/cover_shapes.hpp"
@@ -21,7 +22,7 @@ namespace fs = std::filesystem;
 std::string obj_text(const std::vector<Vec3>& vertices,
                      const std::vector<std::vector<int>>& faces) {
   std::ostringstream out;
-  planner::write_obj(out, vertices, faces);
+  planner::write_obj(out, planner::PolygonMesh{vertices, faces});
   return out.str();
 }
 
@@ -32,7 +33,7 @@ fs::path write_cut_folder(const CoverMesh& cover, const std::string& name) {
   std::vector<int> source;
   const auto split = planner::open_cuts(cover, std::vector<bool>(cover.arcs.size(), true), &source);
   write_file(dir / "cut-mesh.obj", obj_text(split.positions, split.faces));
-  std::vector<int> copy_of(cover.vertices.size(), -1);
+  std::vector<int> copy_of(cover.positions.size(), -1);
   for (std::size_t v = 0; v < source.size(); ++v) {
     if (copy_of[source[v]] < 0) copy_of[source[v]] = static_cast<int>(v);
   }
@@ -49,7 +50,7 @@ fs::path write_cut_folder(const CoverMesh& cover, const std::string& name) {
 TEST(WearabilityVerbTest, LabelsTorusCoverArcsAndWritesPictureAndFrames) {
   const fs::path dir = write_cut_folder(torus_cover(1.0, 0.4, 24, 12, 1), "wearability-torus");
   const CoverMesh ring = torus_mesh(1.0, 0.4, 48, 24);
-  write_file(dir / "torus.obj", obj_text(ring.vertices, ring.faces));
+  write_file(dir / "torus.obj", obj_text(ring.positions, ring.faces));
   const auto result =
       run_wearknit("wearability " + dir.string() + " --wearer " + (dir / "torus.obj").string() +
                    " --trials 2 --max-steps 1500 --seed 3 --resolution 32 --frames " +
@@ -85,7 +86,7 @@ TEST(WearabilityVerbTest, ClosedShellIsRejectedAndEveryArcLaced) {
   shell.arcs.push_back(planner::arc_from_path({0, 1, 13}, "slit"));
   const fs::path dir = write_cut_folder(shell, "wearability-shell");
   const CoverMesh ball = sphere_mesh(1.0, 24, 12);
-  write_file(dir / "ball.obj", obj_text(ball.vertices, ball.faces));
+  write_file(dir / "ball.obj", obj_text(ball.positions, ball.faces));
   const auto result =
       run_wearknit("wearability " + dir.string() + " --wearer " + (dir / "ball.obj").string() +
                    " --trials 2 --max-steps 600 --resolution 24 --cloth-vertices 0");
@@ -112,9 +113,9 @@ fs::path write_closed_torus_cut(const std::string& name) {
   // Coarse (16 x 8 quads): the cutter splits a torus into many short arcs,
   // and the elimination of the new cut tests each of them.
   const CoverMesh garment = torus_mesh(1.0, 0.4, 16, 8);
-  write_file(dir / "garment.obj", obj_text(garment.vertices, garment.faces));
+  write_file(dir / "garment.obj", obj_text(garment.positions, garment.faces));
   const CoverMesh ring = torus_mesh(1.0, 0.4, 48, 24);
-  write_file(dir / "torus.obj", obj_text(ring.vertices, ring.faces));
+  write_file(dir / "torus.obj", obj_text(ring.positions, ring.faces));
   const auto cut =
       run_wearknit("cut " + (dir / "garment.obj").string() + " -o " + (dir / "cut").string() +
                    " --seed 1 --picture-px 60 --quiet --vanishing regular --vanishing-slack 25");
@@ -248,7 +249,7 @@ TEST(WearabilityVerbTest, ARunKilledMidwayResumesFromItsJournal) {
   const fs::path dir = write_cut_folder(cover, "wearability-killed");
   const fs::path whole = write_cut_folder(cover, "wearability-whole");
   const CoverMesh ring = torus_mesh(1.0, 0.4, 48, 24);
-  write_file(dir / "torus.obj", obj_text(ring.vertices, ring.faces));
+  write_file(dir / "torus.obj", obj_text(ring.positions, ring.faces));
   const std::string options = " --wearer " + (dir / "torus.obj").string() +
                               " --trials 2 --max-steps 1500 --seed 5 --resolution 32";
   const fs::path journal = dir / "wearability.journal";

@@ -16,7 +16,7 @@ cloth::SignedDistanceField unit_sphere_field(int resolution = 32) {
   const CoverMesh ball = sphere_mesh(1.0, 32, 16);
   cloth::SdfParams params;
   params.resolution = resolution;
-  return cloth::SignedDistanceField(ball.vertices, ball.faces, params);
+  return cloth::SignedDistanceField(ball.positions, ball.faces, params);
 }
 
 TEST(SdfTest, WindingNumberIsOneInsideAndZeroOutside) {
@@ -25,7 +25,7 @@ TEST(SdfTest, WindingNumberIsOneInsideAndZeroOutside) {
   for (const auto& f : ball.faces) {
     for (std::size_t i = 1; i + 1 < f.size(); ++i) triangles.push_back({f[0], f[i], f[i + 1]});
   }
-  const cloth::TriangleMeshQuery query(ball.vertices, triangles);
+  const cloth::TriangleMeshQuery query(ball.positions, triangles);
   // The far field is a dipole approximation: a few percent, far from 1/2.
   EXPECT_NEAR(query.winding_number({0, 0, 0}), 1.0, 0.05);
   EXPECT_NEAR(query.winding_number({0.3, -0.2, 0.5}), 1.0, 0.05);
@@ -59,7 +59,7 @@ TEST(SdfTest, WindingNumberSignSurvivesAHole) {
   for (const auto& f : ball.faces) {
     for (std::size_t i = 1; i + 1 < f.size(); ++i) triangles.push_back({f[0], f[i], f[i + 1]});
   }
-  const cloth::TriangleMeshQuery query(ball.vertices, triangles);
+  const cloth::TriangleMeshQuery query(ball.positions, triangles);
   EXPECT_GT(query.winding_number({0, 0, -0.2}), 0.8);
   EXPECT_LT(query.winding_number({0, 0, -3}), 0.2);
   EXPECT_LT(query.signed_distance({0, 0, -0.2}), 0);
@@ -95,7 +95,7 @@ TEST(SdfTest, RejectsAFaceWithABadIndex) {
 TEST(ClothTest, SpringsFollowSection82) {
   // A 3×3-vertex patch of 4 quads: 12 edges, 8 diagonals, and bend springs
   // between every other vertex along each of the 3 rows and 3 columns.
-  cloth::ClothMesh patch;
+  cloth::PolygonMesh patch;
   for (int y = 0; y < 3; ++y) {
     for (int x = 0; x < 3; ++x) patch.positions.push_back({double(x), double(y), 0});
   }
@@ -144,7 +144,7 @@ TEST(ClothTest, GlobalDirectionsChangeEverySwitch) {
 TEST(ClothTest, DressedGarmentStaysOutsideTheWearer) {
   const auto field = unit_sphere_field();
   CoverMesh shell = sphere_mesh(0.9, 12, 8);  // starts inside the wearer
-  cloth::ClothMesh garment{shell.vertices, shell.faces};
+  cloth::PolygonMesh garment{shell.positions, shell.faces};
   cloth::ClothParams params;
   cloth::dress(garment, field, params.clearance);
   for (const Vec3& x : garment.positions)
@@ -158,7 +158,7 @@ TEST(ClothTest, DressedGarmentStaysOutsideTheWearer) {
 TEST(ClothTest, SameSeedSameTrajectoryForAnyThreadCount) {
   const auto field = unit_sphere_field();
   CoverMesh cap = sphere_mesh(1.0, 12, 4, std::numbers::pi / 2);
-  cloth::ClothMesh garment{cap.vertices, cap.faces};
+  cloth::PolygonMesh garment{cap.positions, cap.faces};
   cloth::ClothParams params;
   cloth::dress(garment, field, params.clearance);
   params.max_steps = 120;
@@ -184,7 +184,7 @@ TEST(ClothTest, SameSeedSameTrajectoryForAnyThreadCount) {
 TEST(ClothTest, LocalForceLiftsAnOpenCapOffASphere) {
   const auto field = unit_sphere_field();
   CoverMesh cap = sphere_mesh(1.0, 12, 4, std::numbers::pi / 2);
-  cloth::ClothMesh garment{cap.vertices, cap.faces};
+  cloth::PolygonMesh garment{cap.positions, cap.faces};
   cloth::ClothParams params;
   cloth::dress(garment, field, params.clearance);
   params.global_acceleration = 0;  // local force alone (Fig. 6b)
