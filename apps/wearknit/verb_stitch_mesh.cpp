@@ -11,6 +11,7 @@
 #include "planner/stitch_mesh/gauge.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
 #include "planner/stitch_mesh/stitch_mesh_io.hpp"
+#include "planner/stitch_mesh/stitch_mesh_picture.hpp"
 #include "planner/stitch_mesh/stitch_mesher.hpp"
 
 namespace wearknit::cli {

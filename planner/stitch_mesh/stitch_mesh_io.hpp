@@ -20,13 +20,6 @@ LabelledDisc labelled_disc(const CutMesh& cut);
 // (one per face: knit, increase, decrease, short-row).
 void write_stitch_obj(std::ostream& out, const StitchMesh& mesh);
 
-// A picture of the stitch mesh from four sides, faces coloured by type
-// (knit grey, increase green, decrease blue, short row orange; no text, so no
-// font library is needed), course edges darker than wale edges, the boundary red. Returns an empty
-// string or what went wrong.
-std::string draw_stitch_mesh(const StitchMesh& mesh, const std::string& png_path,
-                             int panel_px = 600);
-
 // What the stage adds to report.json under "stitch_mesh".
 struct StitchMeshReport {
   StitchGauge gauge;
