@@ -7,8 +7,7 @@
 #include <string>
 
 #include "knitout/diagnostic.hpp"
-#include "planner/cut/cut_io.hpp"
-#include "planner/stitch_mesh/stitch_mesh_io.hpp"
+#include "planner/pipeline.hpp"
 #include "planner/stitch_mesh/stitch_mesher.hpp"
 
 namespace {
@@ -41,12 +40,12 @@ int main(int argc, char** argv) {
     return 2;
   }
   knitout::DiagnosticSink sink;
-  const auto cut = planner::read_cut_result(argv[1], sink);
+  const auto cut = planner::read_cut(argv[1], sink);
   if (!cut) {
     for (const auto& d : sink.diagnostics()) std::fprintf(stderr, "%s\n", format(d).c_str());
     return 1;
   }
-  g_disc = planner::labelled_disc(*cut);
+  g_disc = planner::labelled_disc(cut->mesh);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -1,6 +1,6 @@
 // strip_rate: how often one strip-off trial (§5, §8.2) takes a garment off its
-// wearer, on a folder whose cuts.json the wearability stage has labelled
-// (written by `wearknit wearability` or `wearknit plan`).
+// wearer, on a cut folder the wearability stage has labelled (its
+// wearability.json, written by `wearknit wearability` or `wearknit plan`).
 //
 // Runs TRIALS trials, each with its own global-force directions, on the
 // labelled configuration (laced arcs open, sewn arcs closed: a configuration
@@ -21,7 +21,7 @@
 #include <thread>
 #include <vector>
 
-#include "planner/wearability/recut.hpp"
+#include "planner/pipeline.hpp"
 #include "planner/wearability/wearability.hpp"
 #include "planner/wearability/wearability_io.hpp"
 
@@ -55,19 +55,18 @@ int main(int argc, char** argv) {
   knitout::DiagnosticSink sink;
   // As the stage reads it by default (--cloth-vertices 500): a coarse garment
   // is subdivided for the cloth, its arcs keeping their indices.
-  const auto folder = planner::read_cut_folder(dir, sink, 500);
+  const auto cut = planner::read_cut(dir, sink);
+  const auto labels = planner::read_wearability(dir, sink);
   const auto wearer = planner::read_stage_mesh(argv[2], sink);
-  if (!folder || !wearer) {
+  if (!cut || !labels || !wearer) {
     knitout::print_text(std::cerr, sink.diagnostics());
     return 1;
   }
-  const planner::CoverMesh& cover = folder->cover;
-  const nlohmann::json& cuts = folder->cuts;
+  const planner::CoverMesh cover = planner::cover_of(*cut, 500);
   std::vector<bool> open(cover.arcs.size(), false);
   std::vector<int> laced;
   for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
-    const auto& arc = cuts["arcs"][a];
-    open[a] = !arc.contains("label") || arc["label"] != "sew";
+    open[a] = a >= labels->labels.size() || labels->labels[a] != planner::Label::Sew;
     if (open[a]) laced.push_back(static_cast<int>(a));
   }
 

@@ -78,6 +78,15 @@ int run_dat_info(const std::vector<std::string>& args, Context& context);
 int run_wearability(const std::vector<std::string>& args, Context& context);
 int run_schedule(const std::vector<std::string>& args, Context& context);
 int run_send(const std::vector<std::string>& args, Context& context);
+// What `wearknit send JOB --to URI` does once its options are read; also
+// how `wearknit plan --send` sends each piece.
+struct SendFileOptions {
+  bool resume = false;
+  int attempts = 8;  // reconnection attempts in a row before giving up
+  bool quiet = false;
+};
+int send_file(const std::string& job_path, const std::string& to, const SendFileOptions& options,
+              Context& context);
 int run_status(const std::vector<std::string>& args, Context& context);
 int run_devices(const std::vector<std::string>& args, Context& context);
 int run_mock_device(const std::vector<std::string>& args, Context& context);

@@ -4,7 +4,7 @@
 #include <ostream>
 
 #include "apps/wearknit/cli.hpp"
-#include "planner/assembly/assembly.hpp"
+#include "planner/pipeline.hpp"
 
 namespace wearknit::cli {
 
@@ -42,6 +42,12 @@ int run_assembly(const std::vector<std::string>& args, Context& context) {
                    failure.find("[A006]") != std::string::npos
                ? kExitUsage
                : kExitInvalid;
+  }
+  std::string written = planner::write_assembly_record(dir, summary);
+  if (written.empty()) written = planner::write_folder_summary(dir);
+  if (!written.empty()) {
+    context.err << "wearknit assembly: " << written << '\n';
+    return kExitUsage;
   }
   if (!page_png.empty()) {
     const auto colon = page_png.find(':');

@@ -17,7 +17,8 @@
 #include <tuple>
 
 #include "apps/wearknit/cli.hpp"
-#include "apps/wearknit/plan_pipeline.hpp"
+#include "apps/wearknit/plan_display.hpp"
+#include "apps/wearknit/stage_options.hpp"
 #include "knitout/output_file.hpp"
 #include "knitout/parser.hpp"
 #include "planner/mesh/mesh_io.hpp"
@@ -30,13 +31,15 @@ namespace po = boost::program_options;
 namespace fs = std::filesystem;
 
 int run_demo(const std::vector<std::string>& args, Context& context) {
-  PlanOptions plan;
+  planner::PlanInputs inputs;
+  std::string out_dir;
+  std::uint64_t seed = 1;
   std::string pattern;
   po::options_description options("options");
   options.add_options()("output,o",
-                        po::value<std::string>(&plan.dir)->default_value("wearknit-demo"),
+                        po::value<std::string>(&out_dir)->default_value("wearknit-demo"),
                         "folder to write into")(
-      "seed", po::value<std::uint64_t>(&plan.seed)->default_value(1), "seed of every stage")(
+      "seed", po::value<std::uint64_t>(&seed)->default_value(1), "seed of every stage")(
       "pattern", po::value<std::string>(&pattern)->default_value("plain"),
       "stitch pattern: plain or seed")("quiet,q", "no progress display");
   po::positional_options_description positional;
@@ -48,7 +51,7 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
     context.err << "wearknit demo: --pattern takes plain or seed, not '" << pattern << "'\n";
     return kExitUsage;
   }
-  const fs::path dir(plan.dir);
+  const fs::path dir(out_dir);
   std::error_code ec;
   fs::create_directories(dir / "input", ec);
   if (ec) {
@@ -58,12 +61,12 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
   }
   // An egg-like ellipsoid 50 x 50 x 90 mm; the cover about 1.5 mm out from
   // it (half the default wale height, 2.9 mm). About 4,500 stitches.
-  plan.wearer = (dir / "input" / "wearer.obj").string();
-  plan.garment = (dir / "input" / "garment.obj").string();
+  inputs.wearer = (dir / "input" / "wearer.obj").string();
+  inputs.garment = (dir / "input" / "garment.obj").string();
   for (const auto& [path, shape, header] :
-       {std::tuple{plan.wearer, planner::quad_ellipsoid(25, 1.8, 6),
+       {std::tuple{inputs.wearer, planner::quad_ellipsoid(25, 1.8, 6),
                    "wearknit demo: the wearer, an ellipsoid, in mm"},
-        std::tuple{plan.garment, planner::quad_ellipsoid(26.5, 1.75, 6),
+        std::tuple{inputs.garment, planner::quad_ellipsoid(26.5, 1.75, 6),
                    "wearknit demo: the garment, the ellipsoid 1.5 mm further out, in mm"}}) {
     const std::string failure = knitout::write_file_atomically(
         path, [&](std::ostream& out) { planner::write_obj(out, shape, header); });
@@ -72,11 +75,16 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
       return kExitUsage;
     }
   }
-  plan.schedule_args = {"--pattern", pattern};
-  plan.quiet = values.count("quiet") != 0;
-  context.out << "wearknit demo: an ellipsoid and its cover, built in code (" << plan.garment
-              << ", " << plan.wearer << ")\n";
-  const int code = run_plan_pipeline(plan, context);
+  planner::PlanParams params;
+  params.cut.cut.seed = seed;
+  params.wearability.test.seed = seed;
+  params.schedule.schedule.seed = seed;
+  if (pattern == "seed") params.schedule.emit.pattern = planner::StitchPattern::Seed;
+  PlanRunOptions run;
+  run.quiet = values.count("quiet") != 0;
+  context.out << "wearknit demo: an ellipsoid and its cover, built in code (" << inputs.garment
+              << ", " << inputs.wearer << ")\n";
+  const int code = run_plan_and_report(inputs, params, out_dir, run, context);
   if (code != kExitOk) {
     context.err << "wearknit demo FAILED\n";
     return code;

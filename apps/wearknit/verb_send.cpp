@@ -156,6 +156,12 @@ int run_send(const std::vector<std::string>& args, Context& context) {
   if (auto code = parse_options(args, *find_verb("send"), options, positional, values, context)) {
     return *code;
   }
+  return send_file(job_path, to,
+                   {values.count("resume") != 0, attempts, values.count("quiet") != 0}, context);
+}
+
+int send_file(const std::string& job_path, const std::string& to, const SendFileOptions& options,
+              Context& context) {
   auto uri = devices::parse_uri(to);
   if (!uri) {
     context.err << "wearknit send: " << uri.error().text() << '\n';
@@ -178,11 +184,11 @@ int run_send(const std::vector<std::string>& args, Context& context) {
     return kExitOk;
   }
   devices::SendOptions send_options;
-  send_options.resume = values.count("resume") != 0;
+  send_options.resume = options.resume;
   devices::LinkOptions link;
-  link.max_attempts = std::max(attempts, 0);
+  link.max_attempts = std::max(options.attempts, 0);
   link.loopback_checkers = project_job_checkers();
-  ProgressPrinter printer(context, values.count("quiet") != 0, to);
+  ProgressPrinter printer(context, options.quiet, to);
   auto report = devices::send_job(
       uri.value(), job.value(), send_options, link,
       [&](const devices::Progress& p, const std::string& note) { printer.update(p, note); });

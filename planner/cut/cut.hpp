@@ -67,7 +67,7 @@ struct CutArc {
   bool closed = false;
 };
 
-// The result of cutting (the planner's `CutMesh`, read and written by cut_io.hpp).
+// The result of cutting (the planner's `CutMesh`; a Cut, cut_stage.hpp, holds it with its report).
 struct CutMesh {
   HalfedgeMesh proxy;  // Q: quads and triangles
   FieldLabels labels;

@@ -1,14 +1,17 @@
-#include "planner/cut/cut_io.hpp"
-
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <sstream>
 
 #include "knitout/output_file.hpp"
+#include "planner/common/hash.hpp"
 #include "planner/common/index.hpp"
+#include "planner/common/json_file.hpp"
+#include "planner/cut/cut_pictures.hpp"
 #include "planner/mesh/mesh_io.hpp"
+#include "planner/pipeline.hpp"
 
 namespace planner {
 
@@ -17,7 +20,11 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-json cuts_json(const CutMesh& cut, const CutSummary& summary) {
+constexpr const char* kProxyHeader = "wearknit proxy Q (quads and triangles), mm";
+constexpr const char* kDiscHeader =
+    "wearknit cut-mesh: one disc; faces as in proxy.obj, vertices duplicated along cuts";
+
+json arcs_json(const CutMesh& cut) {
   json arcs = json::array();
   for (std::size_t i = 0; i < cut.arcs.size(); ++i) {
     const CutArc& arc = cut.arcs[i];
@@ -25,17 +32,10 @@ json cuts_json(const CutMesh& cut, const CutSummary& summary) {
     for (std::size_t k = 0; k + 1 < arc.vertices.size(); ++k) {
       edges.push_back({arc.vertices[k], arc.vertices[k + 1]});
     }
-    arcs.push_back({{"id", i},
-                    {"edges", edges},
-                    {"length_mm", arc.length_mm},
-                    {"closed", arc.closed},
-                    {"label", nullptr}});
+    arcs.push_back(
+        {{"id", i}, {"edges", edges}, {"length_mm", arc.length_mm}, {"closed", arc.closed}});
   }
-  return {{"format", "wearknit-cuts 1"},
-          {"vertices", "0-based indices of the v lines of proxy.obj"},
-          {"cut_edges", summary.cut_edges},
-          {"cut_length_mm", summary.cut_length_mm},
-          {"arcs", arcs}};
+  return arcs;
 }
 
 json labels_json(const CutMesh& cut) {
@@ -123,55 +123,100 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
             {"total", r.load_seconds + r.proxy_seconds + r.cut_seconds}}}};
 }
 
-std::optional<json> read_json(const fs::path& path, knitout::DiagnosticSink& sink) {
-  std::ifstream in(path);
-  if (!in) {
-    sink.error(path.string(), 0, 0, "P020", "cannot open file (is this a cut folder?)");
-    return std::nullopt;
-  }
-  try {
-    return json::parse(in);
-  } catch (const json::exception& e) {
-    sink.error(path.string(), 0, 0, "P021", std::string("malformed JSON: ") + e.what());
-    return std::nullopt;
-  }
+std::string obj_text(const PolygonMesh& mesh, std::string_view header) {
+  std::ostringstream out;
+  write_obj(out, mesh, header);
+  return out.str();
+}
+
+// The CutReport that cut.json's "report" describes (what report_json wrote).
+CutReport report_from_json(const json& r) {
+  CutReport report;
+  const json input = r.value("input", json::object());
+  report.input = input.value("file", std::string());
+  report.units = input.value("units", std::string("mm"));
+  report.scale = input.value("scale", 1.0);
+  const auto size = input.value("size_mm", std::vector<double>{0, 0, 0});
+  if (size.size() == 3) report.input_size_mm = Vec3(size[0], size[1], size[2]);
+  report.input_vertices = input.value("vertices", 0);
+  report.input_faces = input.value("faces", 0);
+  const json proxy = r.value("proxy", json::object());
+  report.remeshed = proxy.value("remeshed", false);
+  report.proxy_method = proxy.value("method", std::string("input"));
+  report.remesh_failure = proxy.value("remesh_failure", std::string());
+  report.proxy_edge_mm = proxy.value("edge_mm", 0.0);
+  report.polygons_split = proxy.value("polygons_split", 0);
+  report.triangles_paired = proxy.value("triangles_paired", 0);
+  report.samples = proxy.value("samples", 0);
+  report.holes_filled = proxy.value("holes_filled", 0);
+  report.folds_removed = proxy.value("folds_removed", 0);
+  report.remesh_attempts = proxy.value("remesh_attempts", 0);
+  const json params = r.value("params", json::object());
+  report.params.seed = params.value("seed", report.params.seed);
+  report.params.cs = params.value("cs", report.params.cs);
+  report.params.co = params.value("co", report.params.co);
+  report.params.vanishing.fewest_irregular = params.value("vanishing", "acute") == "regular";
+  report.params.vanishing.slack_deg = params.value("vanishing_slack_deg", 0.0);
+  report.picture_px = r.value("picture_px", 0);
+  const json time = r.value("time_s", json::object());
+  report.load_seconds = time.value("load", 0.0);
+  report.proxy_seconds = time.value("proxy", 0.0);
+  report.cut_seconds = time.value("cut", 0.0);
+  return report;
 }
 
 }  // namespace
 
-std::string write_cut_result(const std::string& dir, const CutMesh& cut, const CutReport& report) {
+std::string write_cut(const std::string& dir, const Cut& cut, const CutPictures& pictures,
+                      std::uint64_t* id_out) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) return dir + ": cannot create folder: " + ec.message();
-  const CutSummary summary = summarize(cut);
+  const CutMesh& mesh = cut.mesh;
+  const CutSummary summary = summarize(mesh);
   const fs::path base(dir);
-  std::string failure =
-      knitout::write_file_atomically((base / "proxy.obj").string(), [&](std::ostream& out) {
-        write_obj(out, cut.proxy.polygons(), "wearknit proxy Q (quads and triangles), mm");
-      });
-  if (!failure.empty()) return failure;
-  failure =
-      knitout::write_file_atomically((base / "cut-mesh.obj").string(), [&](std::ostream& out) {
-        write_obj(
-            out, cut.disc,
-            "wearknit cut-mesh: one disc; faces as in proxy.obj, vertices duplicated along cuts");
-      });
-  if (!failure.empty()) return failure;
-  const std::pair<const char*, json> files[] = {{"cuts.json", cuts_json(cut, summary)},
-                                                {"labels.json", labels_json(cut)},
-                                                {"report.json", report_json(cut, summary, report)}};
-  for (const auto& [name, content] : files) {
-    failure = knitout::write_file_atomically(
-        (base / name).string(), [&](std::ostream& out) { out << content.dump(1) << '\n'; });
+  const std::string proxy = obj_text(mesh.proxy.polygons(), kProxyHeader);
+  const std::string disc = obj_text(mesh.disc, kDiscHeader);
+  const json labels = labels_json(mesh);
+  const json arcs = arcs_json(mesh);
+  // The id covers everything a later stage reads of the cut.
+  std::uint64_t id = fingerprint(proxy);
+  id = fingerprint(disc, id);
+  id = fingerprint(labels.dump(), id);
+  id = fingerprint(arcs.dump(), id);
+  if (id_out != nullptr) *id_out = id;
+  json cut_file = {{"format", "wearknit-cut 1"},
+                   {"cut_id", hex64(id)},
+                   {"vertices", "0-based indices of the v lines of proxy.obj"},
+                   {"cut_edges", summary.cut_edges},
+                   {"cut_length_mm", summary.cut_length_mm},
+                   {"arcs", arcs},
+                   {"report", report_json(mesh, summary, cut.report)}};
+  cut_file["report"]["picture_px"] = pictures.draw ? pictures.panel_px : 0;
+  const std::pair<const char*, const std::string*> objs[] = {{"proxy.obj", &proxy},
+                                                             {"cut-mesh.obj", &disc}};
+  for (const auto& [name, text] : objs) {
+    const std::string failure = knitout::write_file_atomically(
+        (base / name).string(), [&](std::ostream& out) { out << *text; });
     if (!failure.empty()) return failure;
   }
-  return {};
+  const std::pair<const char*, const json*> jsons[] = {{"labels.json", &labels},
+                                                       {"cut.json", &cut_file}};
+  for (const auto& [name, content] : jsons) {
+    const std::string failure = write_json_file((base / name).string(), *content);
+    if (!failure.empty()) return failure;
+  }
+  if (!pictures.draw) return {};
+  std::string failure = draw_cuts_3d(mesh, (base / "cuts-3d.png").string(), pictures.panel_px);
+  if (failure.empty())
+    failure = draw_layout_2d(mesh, (base / "layout-2d.png").string(), pictures.panel_px * 5 / 3);
+  return failure;
 }
 
-std::optional<CutMesh> read_cut_result(const std::string& dir, knitout::DiagnosticSink& sink) {
+std::optional<Cut> read_cut(const std::string& dir, knitout::DiagnosticSink& sink) {
   const fs::path base(dir);
   const std::size_t errors_before = sink.error_count();
-  for (const char* name : {"proxy.obj", "cut-mesh.obj", "cuts.json", "labels.json"}) {
+  for (const char* name : {"proxy.obj", "cut-mesh.obj", "cut.json", "labels.json"}) {
     if (!fs::is_regular_file(base / name)) {
       sink.error((base / name).string(), 0, 0, "P020",
                  "missing: not a cut folder (run wearknit cut)");
@@ -180,12 +225,13 @@ std::optional<CutMesh> read_cut_result(const std::string& dir, knitout::Diagnost
   if (sink.error_count() != errors_before) return std::nullopt;
   auto proxy = read_polygon_soup((base / "proxy.obj").string(), sink);
   auto disc = read_polygon_soup((base / "cut-mesh.obj").string(), sink);
-  auto labels = read_json(base / "labels.json", sink);
-  auto cuts = read_json(base / "cuts.json", sink);
+  auto labels = read_json_object((base / "labels.json").string(), sink, "P020", "P021");
+  auto cuts = read_json_object((base / "cut.json").string(), sink, "P020", "P021");
   if (!proxy || !disc || !labels || !cuts) return std::nullopt;
   if (!check_mesh(*proxy, (base / "proxy.obj").string(), sink)) return std::nullopt;
   const std::string labels_name = (base / "labels.json").string();
-  CutMesh cut;
+  Cut result;
+  CutMesh& cut = result.mesh;
   try {
     cut.proxy = HalfedgeMesh(std::move(*proxy));
     const HalfedgeMesh& q = cut.proxy;
@@ -235,7 +281,7 @@ std::optional<CutMesh> read_cut_result(const std::string& dir, knitout::Diagnost
       if (e >= 0) cut.motorcycle_edges[at(e)] = m.at(2).get<int>();
     }
     cut.cut_edge.assign(at(q.num_edges()), false);
-    const std::string cuts_name = (base / "cuts.json").string();
+    const std::string cuts_name = (base / "cut.json").string();
     for (const auto& a : cuts->at("arcs")) {
       CutArc arc;
       for (const auto& edge : a.at("edges")) {
@@ -258,6 +304,11 @@ std::optional<CutMesh> read_cut_result(const std::string& dir, knitout::Diagnost
     }
     cut.disc = std::move(*disc);
     cut.disc_source = std::move(source);
+    result.report = report_from_json(cuts->value("report", json::object()));
+    if (!parse_hex64(cuts->value("cut_id", std::string()), result.id)) {
+      sink.error(cuts_name, 0, 0, "P021", "no \"cut_id\" of 16 hex digits");
+      return std::nullopt;
+    }
   } catch (const json::exception& e) {
     sink.error(labels_name, 0, 0, "P021", std::string("unexpected content: ") + e.what());
     return std::nullopt;
@@ -265,7 +316,7 @@ std::optional<CutMesh> read_cut_result(const std::string& dir, knitout::Diagnost
     sink.error((base / "proxy.obj").string(), 0, 0, "P022", e.what());
     return std::nullopt;
   }
-  return cut;
+  return result;
 }
 
 }  // namespace planner

@@ -1,11 +1,10 @@
-#include "planner/stitch_mesh/stitch_mesh_io.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -14,7 +13,11 @@
 #include <utility>
 
 #include "knitout/output_file.hpp"
+#include "planner/common/hash.hpp"
 #include "planner/common/index.hpp"
+#include "planner/common/json_file.hpp"
+#include "planner/pipeline.hpp"
+#include "planner/stitch_mesh/stitch_mesh_picture.hpp"
 
 namespace planner {
 
@@ -79,72 +82,108 @@ void write_stitch_obj(std::ostream& out, const StitchMesh& mesh) {
 
 namespace {
 
+namespace fs = std::filesystem;
+
 nlohmann::json lengths_json(const EdgeLengthStats& s, double target) {
   return {{"count", s.count},   {"target_mm", target}, {"mean_mm", s.mean_mm},
           {"min_mm", s.min_mm}, {"max_mm", s.max_mm},  {"within_15_percent", s.within_15_percent}};
 }
 
-}  // namespace
-
-std::string merge_stitch_report(const std::string& dir, const StitchMeshReport& report) {
-  const std::string path = (std::filesystem::path(dir) / "report.json").string();
-  nlohmann::json root = nlohmann::json::object();
-  if (std::filesystem::exists(path)) {
-    std::ifstream in(path);
-    try {
-      root = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-      return path + ": not JSON (" + e.what() + "); left as it is";
-    }
-    if (!root.is_object()) return path + ": not a JSON object; left as it is";
-  }
+nlohmann::json report_json(const StitchMeshReport& report) {
   const StitchMeshFigures& f = report.figures;
   const double stitch_area = report.gauge.course_mm * report.gauge.wale_mm;
-  root["stitch_mesh"] = {
-      {"gauge",
-       {{"needles_per_inch", report.gauge.needles_per_inch},
-        {"course_mm", report.gauge.course_mm},
-        {"wale_mm", report.gauge.wale_mm},
-        {"from", report.gauge.source}}},
-      {"faces",
-       {{"total", f.faces},
-        {"knit", f.knit},
-        {"increase", f.increase},
-        {"decrease", f.decrease},
-        {"short_row", f.short_row}}},
-      {"vertices", f.vertices},
-      {"rows", report.stats.rows},
-      {"strips", report.stats.strips},
-      {"course_edges", lengths_json(f.course, report.gauge.course_mm)},
-      {"wale_edges", lengths_json(f.wale, report.gauge.wale_mm)},
-      {"cut_mesh_area_mm2", report.disc_area_mm2},
-      {"expected_stitches", stitch_area > 0 ? report.disc_area_mm2 / stitch_area : 0.0},
-      {"stability_rules",
-       {{"edge_shaping", report.stability.edge_shaping},
-        {"stacked_shaping", report.stability.stacked_shaping},
-        {"opposed_shaping", report.stability.opposed_shaping},
-        {"one_stitch_rows", report.stability.one_stitch_rows}}},
-      {"saddles_split", report.stats.saddles_split},
-      {"saddles_pinned", report.stats.saddles_pinned},
-      {"lenses_glued", report.stats.lenses_skipped},
-      {"bind_off_sides", report.stats.boundary_sides},
-      {"sides_split_below", report.stats.sides_split_below},
-      {"straighten_fits", report.stats.straighten_fits},
-      {"label_deviation_deg", report.stats.label_deviation_deg},
-      {"row_time_levelled", report.stats.row_time_levelled},
-      {"tip_sides", report.stats.tip_sides},
-      {"relax_sweeps", report.stats.relax_sweeps},
-      {"relax_seconds", report.stats.relax_seconds},
-      {"off_surface",
-       {{"faces", report.off_surface.faces.size()},
-        {"max_offset_mm", report.off_surface.max_offset_mm},
-        {"tolerance_mm", report.off_surface.tolerance_mm}}},
-      {"boundary_loops", f.boundary_loops},
-      {"euler_characteristic", f.euler_characteristic},
-      {"remesh_seconds", report.stats.total_seconds},
-      {"seconds", report.seconds}};
-  return knitout::write_file_atomically(path,
-                                        [&](std::ostream& out) { out << root.dump(1) << "\n"; });
+  return {{"gauge",
+           {{"needles_per_inch", report.gauge.needles_per_inch},
+            {"course_mm", report.gauge.course_mm},
+            {"wale_mm", report.gauge.wale_mm},
+            {"from", report.gauge.source}}},
+          {"faces",
+           {{"total", f.faces},
+            {"knit", f.knit},
+            {"increase", f.increase},
+            {"decrease", f.decrease},
+            {"short_row", f.short_row}}},
+          {"vertices", f.vertices},
+          {"rows", report.stats.rows},
+          {"strips", report.stats.strips},
+          {"course_edges", lengths_json(f.course, report.gauge.course_mm)},
+          {"wale_edges", lengths_json(f.wale, report.gauge.wale_mm)},
+          {"cut_mesh_area_mm2", report.disc_area_mm2},
+          {"expected_stitches", stitch_area > 0 ? report.disc_area_mm2 / stitch_area : 0.0},
+          {"stability_rules",
+           {{"edge_shaping", report.stability.edge_shaping},
+            {"stacked_shaping", report.stability.stacked_shaping},
+            {"opposed_shaping", report.stability.opposed_shaping},
+            {"one_stitch_rows", report.stability.one_stitch_rows}}},
+          {"saddles_split", report.stats.saddles_split},
+          {"saddles_pinned", report.stats.saddles_pinned},
+          {"lenses_glued", report.stats.lenses_skipped},
+          {"bind_off_sides", report.stats.boundary_sides},
+          {"sides_split_below", report.stats.sides_split_below},
+          {"straighten_fits", report.stats.straighten_fits},
+          {"label_deviation_deg", report.stats.label_deviation_deg},
+          {"row_time_levelled", report.stats.row_time_levelled},
+          {"tip_sides", report.stats.tip_sides},
+          {"relax_sweeps", report.stats.relax_sweeps},
+          {"relax_seconds", report.stats.relax_seconds},
+          {"off_surface",
+           {{"faces", report.off_surface.faces.size()},
+            {"max_offset_mm", report.off_surface.max_offset_mm},
+            {"tolerance_mm", report.off_surface.tolerance_mm}}},
+          {"boundary_loops", f.boundary_loops},
+          {"euler_characteristic", f.euler_characteristic},
+          {"remesh_seconds", report.stats.total_seconds},
+          {"seconds", report.seconds}};
+}
+
+}  // namespace
+
+std::string write_stitch_mesh(const std::string& dir, const StitchMeshOutcome& outcome,
+                              bool picture) {
+  const fs::path base(dir);
+  std::ostringstream smobj;
+  write_smobj(smobj, outcome.mesh);
+  const std::string smobj_text = smobj.str();
+  std::string failure = knitout::write_file_atomically(
+      (base / "stitch-mesh.smobj").string(), [&](std::ostream& out) { out << smobj_text; });
+  if (failure.empty()) {
+    failure = knitout::write_file_atomically(
+        (base / "stitch-mesh.obj").string(),
+        [&](std::ostream& out) { write_stitch_obj(out, outcome.mesh); });
+  }
+  if (failure.empty() && picture)
+    failure = draw_stitch_mesh(outcome.mesh, (base / "stitch-mesh.png").string());
+  if (failure.empty()) {
+    failure = write_json_file((base / "stitch-mesh.json").string(),
+                              {{"format", "wearknit-stitch-mesh 1"},
+                               {"cut_id", hex64(outcome.cut_id)},
+                               {"stitch_mesh_id", hex64(fingerprint(smobj_text))},
+                               {"report", report_json(outcome.report)}});
+  }
+  return failure;
+}
+
+std::optional<StitchMeshFile> read_stitch_mesh(const std::string& dir,
+                                               knitout::DiagnosticSink& sink) {
+  const fs::path base(dir);
+  const std::string smobj = (base / "stitch-mesh.smobj").string();
+  std::ifstream in(smobj, std::ios::binary);
+  if (!in) {
+    sink.error(smobj, 0, 0, "S900", "cannot open the stitch mesh (run wearknit stitch-mesh)");
+    return std::nullopt;
+  }
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream text(bytes);
+  auto mesh = parse_smobj(text, smobj, sink);
+  if (!mesh) return std::nullopt;
+  StitchMeshFile file;
+  file.mesh = std::move(*mesh);
+  file.id = fingerprint(bytes);
+  // The cut it was made from, when the stitch-mesh stage wrote it.
+  if (const auto json = read_json_object_if_any((base / "stitch-mesh.json").string())) {
+    parse_hex64(json->value("cut_id", std::string()), file.cut_id);
+  }
+  return file;
 }
 
 }  // namespace planner

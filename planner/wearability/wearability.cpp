@@ -10,7 +10,6 @@
 #include <queue>
 #include <random>
 #include <stdexcept>
-#include <thread>
 #include <unordered_map>
 
 #include "planner/common/union_find.hpp"
@@ -28,11 +27,8 @@ std::uint64_t edge_key(int a, int b) {
 
 // SplitMix64: decorrelates the seeds of runs, tests and trials derived from
 // one user seed.
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  return x ^ (x >> 31);
+constexpr std::uint64_t mix(std::uint64_t x) {
+  return mix64(x);
 }
 std::uint64_t derive(std::uint64_t seed, std::uint64_t a, std::uint64_t b = 0) {
   return mix(mix(mix(seed) ^ a) ^ (b * 0x632BE59BD9B4E019ULL));
@@ -49,21 +45,6 @@ std::vector<int> random_order(int n, std::uint64_t seed) {
 }
 
 }  // namespace
-
-std::uint64_t fingerprint(std::string_view bytes, std::uint64_t seed) {
-  std::uint64_t h = mix(seed ^ bytes.size());
-  std::size_t i = 0;
-  for (; i + 8 <= bytes.size(); i += 8) {
-    std::uint64_t word = 0;
-    for (int b = 0; b < 8; ++b)
-      word |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[i + b])) << (8 * b);
-    h = mix(h ^ word);
-  }
-  std::uint64_t tail = 0;
-  for (int b = 0; i < bytes.size(); ++i, ++b)
-    tail |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[i])) << (8 * b);
-  return mix(h ^ tail ^ 0xFF);
-}
 
 std::uint64_t fingerprint(const CoverMesh& mesh) {
   std::string bytes;
@@ -386,38 +367,30 @@ TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<boo
 
   std::vector<TrialOutcome> outcomes(trials);
   std::vector<std::uint64_t> steps(trials, 0), projections(trials, 0);
-  std::atomic<int> next{0};
   std::atomic<int> first_success{trials};
-  auto work = [&] {
-    for (;;) {
-      const int t = next.fetch_add(1);
-      if (t >= trials || t > first_success.load()) return;
-      TrialOutcome& outcome = outcomes[t];
-      outcome.seed = derive(seed, static_cast<std::uint64_t>(t));
-      cloth::ClothSimulation sim(garment, wearer, simulation);
-      // A trial after a successful one cannot change the answer: stop it.
-      const auto result = sim.run(outcome.seed, [&](int, const cloth::ClothSimulation&) {
-        return first_success.load(std::memory_order_relaxed) > t;
-      });
-      outcome.success = result.success;
-      outcome.steps = result.steps;
-      outcome.stalled = result.stalled;
-      outcome.min_distance = result.min_distance / wearer.scale();
-      steps[t] = static_cast<std::uint64_t>(result.steps);
-      projections[t] = result.projections;
-      if (result.success) {
-        int current = first_success.load();
-        while (t < current && !first_success.compare_exchange_weak(current, t)) {
-        }
+  // Trials are handed out one at a time in order, so a trial after a success
+  // is never started.
+#pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(1, workers))
+  for (int t = 0; t < trials; ++t) {
+    if (t > first_success.load()) continue;
+    TrialOutcome& outcome = outcomes[t];
+    outcome.seed = derive(seed, static_cast<std::uint64_t>(t));
+    cloth::ClothSimulation sim(garment, wearer, simulation);
+    // A trial after a successful one cannot change the answer: stop it.
+    const auto result = sim.run(outcome.seed, [&](int, const cloth::ClothSimulation&) {
+      return first_success.load(std::memory_order_relaxed) > t;
+    });
+    outcome.success = result.success;
+    outcome.steps = result.steps;
+    outcome.stalled = result.stalled;
+    outcome.min_distance = result.min_distance / wearer.scale();
+    steps[t] = static_cast<std::uint64_t>(result.steps);
+    projections[t] = result.projections;
+    if (result.success) {
+      int current = first_success.load();
+      while (t < current && !first_success.compare_exchange_weak(current, t)) {
       }
     }
-  };
-  if (workers <= 1) {
-    work();
-  } else {
-    std::vector<std::thread> pool;
-    for (int w = 0; w < workers; ++w) pool.emplace_back(work);
-    for (auto& thread : pool) thread.join();
   }
   TestResult result;
   const int last = first_success.load();

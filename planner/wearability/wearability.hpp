@@ -42,6 +42,7 @@
 #include <string_view>
 #include <vector>
 
+#include "planner/common/hash.hpp"
 #include "planner/mesh/mesh.hpp"
 #include "simulators/cloth/cloth.hpp"
 #include "simulators/cloth/sdf.hpp"
@@ -114,11 +115,6 @@ class TestRecord {
   virtual std::optional<TestResult> find(std::uint64_t key) = 0;
   virtual void add(std::uint64_t key, const TestResult& result) = 0;
 };
-
-// A 64-bit fingerprint of bytes (SplitMix64 over 8-byte words), for keys and
-// for telling whether a record was made with the same inputs; not a
-// cryptographic digest.
-std::uint64_t fingerprint(std::string_view bytes, std::uint64_t seed = 0);
 
 struct WearabilityParams {
   cloth::ClothParams cloth;  // every trial's simulation (its `threads` is ignored)

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <ostream>
 
+#include "planner/common/hash.hpp"
+#include "planner/common/json_file.hpp"
 #include "planner/mesh/mesh_io.hpp"
 
 namespace planner {
@@ -84,6 +86,19 @@ std::optional<CoverMesh> read_cover_mesh(const PolygonMesh& cut_mesh, const nloh
   return mesh;
 }
 
+std::optional<CoverMesh> read_garment(const std::string& dir, int min_vertices,
+                                      knitout::DiagnosticSink& sink) {
+  const std::string mesh_path = (std::filesystem::path(dir) / "cut-mesh.obj").string();
+  const std::string cuts_path = (std::filesystem::path(dir) / "cut.json").string();
+  const std::size_t errors_before = sink.error_count();
+  const auto cut_mesh = read_stage_mesh(mesh_path, sink);
+  const auto cuts = read_json_object(cuts_path, sink, "W004", "W010");
+  if (!cut_mesh || !cuts || sink.error_count() != errors_before) return std::nullopt;
+  auto cover = read_cover_mesh(*cut_mesh, *cuts, cuts_path, sink);
+  if (!cover) return std::nullopt;
+  return refined_for_cloth(std::move(*cover), min_vertices);
+}
+
 nlohmann::json trials_json(const std::vector<TrialOutcome>& trials) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& t : trials) {
@@ -96,27 +111,29 @@ nlohmann::json trials_json(const std::vector<TrialOutcome>& trials) {
   return list;
 }
 
-void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study,
-                   const WearabilityParams& params) {
-  const int chosen = chosen_run(study);
-  auto& arcs = cuts["arcs"];
-  const EliminationResult* result = chosen >= 0 ? &study.runs[chosen] : nullptr;
-  for (std::size_t a = 0; a < arcs.size(); ++a) {
-    if (result == nullptr) {
-      arcs[a]["label"] = "lace";
-      arcs[a].erase("wearability");
-      continue;
-    }
-    const ArcResult& arc = result->arcs[a];
-    arcs[a]["label"] = to_string(arc.label);
-    nlohmann::json detail = {{"position", arc.position},
-                             {"wearable_when_sewn", arc.test.wearable},
-                             {"tested_with", arc.test.group - 1},
-                             {"trials", trials_json(arc.test.trials)}};
-    if (study.runs.size() > 1) detail["lace_probability"] = study.lace_probability[a];
-    arcs[a]["wearability"] = detail;
+namespace {
+
+using nlohmann::json;
+
+json attempts_json(const std::vector<CutAttempt>& attempts) {
+  json list = json::array();
+  for (const auto& a : attempts) {
+    json entry = {{"attempt", a.attempt},
+                  {"cut_seed", a.cut_seed ? json(*a.cut_seed) : json(nullptr)},
+                  {"arcs", a.arcs},
+                  {"wearable", a.wearable},
+                  {"initial_trials", trials_json(a.trials)}};
+    if (!a.failure.empty()) entry["failure"] = a.failure;
+    list.push_back(entry);
   }
-  nlohmann::json summary = {
+  return list;
+}
+
+json summary_json(const Wearability& result) {
+  const LacingStudy& study = result.study;
+  const WearabilityParams& params = result.params.test;
+  const int chosen = chosen_run(study);
+  json summary = {
       {"wearable", chosen >= 0},
       {"runs", study.runs.size()},
       {"wearable_runs", study.wearable_runs},
@@ -130,16 +147,53 @@ void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study,
   if (!study.runs.empty()) {
     summary["initial_trials"] = trials_json(study.runs[chosen >= 0 ? chosen : 0].initial.trials);
   }
-  if (result != nullptr) {
+  if (chosen >= 0) {
+    const EliminationResult& run = study.runs[static_cast<std::size_t>(chosen)];
     int sewn = 0;
-    for (const auto& arc : result->arcs) sewn += arc.label == Label::Sew;
+    for (const auto& arc : run.arcs) sewn += arc.label == Label::Sew;
     summary["sewn"] = sewn;
-    summary["tests"] = result->tests + 1;
+    summary["tests"] = run.tests + 1;
     // Tests of a run cut short, read from its journal instead of simulated.
-    summary["tests_replayed"] = result->replayed;
-    summary["laced"] = static_cast<int>(result->arcs.size()) - sewn;
+    summary["tests_replayed"] = run.replayed;
+    summary["laced"] = static_cast<int>(run.arcs.size()) - sewn;
   }
-  cuts["wearability"] = summary;
+  summary["recut"] = result.recut.has_value();
+  const auto seed = result.cut_seed();
+  summary["cut_seed"] = seed ? json(*seed) : json(nullptr);
+  summary["cut_attempts"] = attempts_json(result.attempts);
+  summary["seconds"] = result.seconds;
+  return summary;
+}
+
+}  // namespace
+
+json wearability_json(const Wearability& result, std::uint64_t labelled_cut_id) {
+  const LacingStudy& study = result.study;
+  const int chosen = chosen_run(study);
+  const EliminationResult* run =
+      chosen >= 0 ? &study.runs[static_cast<std::size_t>(chosen)] : nullptr;
+  json arcs = json::array();
+  for (std::size_t a = 0; a < result.cover.arcs.size(); ++a) {
+    json entry = {{"id", a}};
+    if (run == nullptr) {
+      entry["label"] = "lace";
+      arcs.push_back(entry);
+      continue;
+    }
+    const ArcResult& arc = run->arcs[a];
+    entry["label"] = to_string(arc.label);
+    json detail = {{"position", arc.position},
+                   {"wearable_when_sewn", arc.test.wearable},
+                   {"tested_with", arc.test.group - 1},
+                   {"trials", trials_json(arc.test.trials)}};
+    if (study.runs.size() > 1) detail["lace_probability"] = study.lace_probability[a];
+    entry["wearability"] = detail;
+    arcs.push_back(entry);
+  }
+  return {{"format", "wearknit-wearability 1"},
+          {"cut_id", hex64(labelled_cut_id)},
+          {"summary", summary_json(result)},
+          {"arcs", arcs}};
 }
 
 }  // namespace planner

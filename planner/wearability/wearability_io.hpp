@@ -1,17 +1,19 @@
-// Reading and writing what the wearability stage consumes and produces.
+// Reading and writing what the wearability stage consumes and produces
+// (docs/wearability.md has the formats).
 //
-// cuts.json (written by `wearknit cut`, read and extended by `wearknit
-// wearability`; docs/wearability.md has the full description):
+// The garment's arcs, as cut.json lists them:
 //
 //   { "arcs": [ { "id": 0, "edges": [[a, b], [b, c], ...] }, ... ] }
 //
-// Vertex indices are 0-based indices of the vertices of cut-mesh.obj. An arc
+// Vertex indices are 0-based indices of the vertices of the cut mesh. An arc
 // may give "vertices": [a, b, c, ...] (a path) instead of "edges". The cut
 // mesh may be split along its cuts or not: read_cover_mesh() welds vertices
 // that coincide, so both sides of a cut become one vertex and the arc's edges
-// name the welded edge. Other fields are kept as they are; the stage adds
-// "label" ("sew" or "lace") and "wearability" (its test) to every arc and a
-// top-level "wearability" summary.
+// name the welded edge.
+//
+// wearability.json (write_wearability, planner/pipeline.hpp): the id of the
+// cut its labels belong to, a "summary" of the stage, and per arc its
+// "label" ("sew" or "lace") and "wearability" (the test that decided it).
 #pragma once
 
 #include <iosfwd>
@@ -22,6 +24,7 @@
 #include "knitout/diagnostic.hpp"
 #include "planner/mesh/mesh.hpp"
 #include "planner/wearability/wearability.hpp"
+#include "planner/wearability/wearability_stage.hpp"
 
 namespace planner {
 
@@ -37,12 +40,19 @@ std::optional<CoverMesh> read_cover_mesh(const PolygonMesh& cut_mesh, const nloh
                                          const std::string& cuts_source,
                                          knitout::DiagnosticSink& sink);
 
+// The garment of a folder made by hand: DIR/cut-mesh.obj and the arcs of
+// DIR/cut.json (read_stage_mesh, read_cover_mesh), subdivided for the cloth
+// until it has `min_vertices` vertices (refined_for_cloth). Diagnostics:
+// W003, W004, W010, W011 (docs/diagnostics.md).
+std::optional<CoverMesh> read_garment(const std::string& dir, int min_vertices,
+                                      knitout::DiagnosticSink& sink);
+
 // Trial records as cuts.json and report.json write them:
 // [{"seed", "success", "steps", "stalled", "min_distance"}, ...].
 nlohmann::json trials_json(const std::vector<TrialOutcome>& trials);
 
-// Adds the results to the cuts.json document (see the header comment).
-// `study` holds R runs; the labels are those of the first run.
-void annotate_cuts(nlohmann::json& cuts, const LacingStudy& study, const WearabilityParams& params);
+// The content of wearability.json for `result`, whose labels belong to the
+// cut with id `labelled_cut_id`.
+nlohmann::json wearability_json(const Wearability& result, std::uint64_t labelled_cut_id);
 
 }  // namespace planner

@@ -107,8 +107,9 @@ TEST_F(PlanTest, WritesThePlanFolderWithEveryStage) {
                            "wearer.obj", "stitch-mesh.smobj", "wearability.png", "plan.log",
                            "assembly.svg", "assembly.pdf", "assembly-3d.png"})
     EXPECT_TRUE(fs::is_regular_file(plan / name)) << name;
-  EXPECT_FALSE(fs::exists(plan / ".plan-wear"));
-  EXPECT_FALSE(fs::exists(plan / ".plan-knit"));
+  for (const char* name : {"cut.json", "wearability.json", "stitch-mesh.json", "schedule.json",
+                           "assembly.json", "plan.json"})
+    EXPECT_TRUE(fs::is_regular_file(plan / name)) << name;
   expect_valid_pieces(plan);
 
   // Both branches' results are in the merged files.
@@ -140,12 +141,11 @@ TEST_F(PlanTest, WritesThePlanFolderWithEveryStage) {
   EXPECT_EQ(summary["stitches"], report["stitch_mesh"]["faces"]["total"]);
   EXPECT_GT(summary["estimated_knit_time_s"].get<double>(), 0.0);
   EXPECT_GT(report["plan"]["total_s"].get<double>(), 0.0);
-  // Not a terminal: no progress line, only the summary, naming the plan
-  // folder (not a staging folder).
+  // Not a terminal: no progress line, only the summary, naming the plan folder.
   EXPECT_EQ(result.out.find('\r'), std::string::npos);
   EXPECT_NE(result.out.find("  wearability "), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("  total "), std::string::npos) << result.out;
-  EXPECT_EQ(result.out.find(".plan-"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find(plan.string()), std::string::npos) << result.out;
 }
 
 TEST_F(PlanTest, SendsEveryPieceToAFolder) {
@@ -198,7 +198,7 @@ TEST_F(PlanTest, AnUnreadableWearerFailsAtTheCut) {
       run_wearknit("plan " + (*dir_ / "garment.obj").string() + " --wearer " +
                    (*dir_ / "absent.obj").string() + " -o " + (*dir_ / "c").string());
   EXPECT_EQ(result.exit_code, 1);
-  EXPECT_NE(result.err.find("wearknit plan: the cut stage failed (exit 1):\n  " +
+  EXPECT_NE(result.err.find("wearknit plan: the cut stage failed (exit 2):\n  " +
                             (*dir_ / "absent.obj").string() + ": error: [P001]"),
             std::string::npos)
       << result.err;
@@ -207,21 +207,26 @@ TEST_F(PlanTest, AnUnreadableWearerFailsAtTheCut) {
 }
 
 TEST_F(PlanTest, AFailedScheduleKeepsTheEarlierStages) {
-  const auto result = run_wearknit(plan_command("d", "--trials 0 --no-pictures"));
+  // A file where the schedule's pieces/ folder goes: the schedule stage
+  // cannot write its pieces; the stages before it keep their files.
+  const fs::path plan = *dir_ / "d";
+  fs::create_directories(plan);
+  write_file(plan / "pieces", "not a folder\n");
+  const auto result = run_wearknit(plan_command("d", "--no-pictures"));
   EXPECT_EQ(result.exit_code, 1);
-  EXPECT_NE(result.err.find("wearknit plan: the schedule stage failed (exit 2):\n"
-                            "  wearknit schedule: --trials must be at least 1\n"),
+  EXPECT_NE(result.err.find("wearknit plan: the schedule stage failed (exit 2):\n"),
             std::string::npos)
       << result.err;
+  EXPECT_NE(result.err.find((plan / "pieces").string()), std::string::npos) << result.err;
   EXPECT_NE(result.err.find("the outputs of cut, wearability, stitch-mesh are in"),
             std::string::npos)
       << result.err;
-  const fs::path plan = *dir_ / "d";
-  EXPECT_TRUE(fs::is_regular_file(plan / "cut-mesh.obj"));
-  EXPECT_TRUE(fs::is_regular_file(plan / "stitch-mesh.smobj"));
-  EXPECT_FALSE(fs::exists(plan / "pieces"));
+  for (const char* name :
+       {"cut-mesh.obj", "cut.json", "wearability.json", "stitch-mesh.smobj", "stitch-mesh.json"})
+    EXPECT_TRUE(fs::is_regular_file(plan / name)) << name;
+  EXPECT_EQ(read_file(plan / "pieces"), "not a folder\n");
+  EXPECT_FALSE(fs::exists(plan / "schedule.json"));
   EXPECT_FALSE(fs::exists(plan / "assembly.svg"));
-  EXPECT_FALSE(fs::exists(plan / ".plan-knit"));
   const json cuts = read_json(plan / "cuts.json");
   for (const json& arc : cuts["arcs"]) EXPECT_TRUE(arc["label"].is_string()) << arc.dump();
   const json report = read_json(plan / "report.json");
@@ -250,9 +255,9 @@ TEST_F(PlanTest, APlanKilledInItsWearabilityStageResumesIt) {
   const fs::path journal = plan / "wearability.journal";
   ASSERT_TRUE(run_wearknit_and_kill(plan_command("c", "-q"), journal, 3))
       << "the plan ended before it could be killed";
-  EXPECT_FALSE(fs::exists(plan / "report.json") &&
-               read_json(plan / "report.json").contains("schedule"))
-      << "killed before the merge: no stage's results are in the plan folder yet";
+  EXPECT_FALSE(fs::exists(plan / "wearability.json"))
+      << "killed in its wearability stage: the stage has not written its file";
+  EXPECT_TRUE(fs::is_regular_file(plan / "cut.json")) << "the cut stage had finished";
   const auto result = run_wearknit(plan_command("c", "-q"));
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(read_file(plan / "plan.log").find("tests read from the journal"), std::string::npos)
@@ -261,7 +266,6 @@ TEST_F(PlanTest, APlanKilledInItsWearabilityStageResumesIt) {
   EXPECT_GE(cuts["wearability"]["tests_replayed"].get<int>(), 2);
   EXPECT_EQ(cuts["arcs"], read_json(*dir_ / "a" / "cuts.json")["arcs"]);
   EXPECT_FALSE(fs::exists(journal)) << "the finished stage deletes its journal";
-  EXPECT_FALSE(fs::exists(plan / ".plan-wear" / "wearability.journal"));
 }
 
 TEST(DemoTest, RunsThePipelineOnItsOwnShape) {

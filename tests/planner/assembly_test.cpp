@@ -264,7 +264,7 @@ TEST(AssemblyTest, MissingOrCorruptFilesGiveAClearErrorAndWriteNothing) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, "");
   EXPECT_NE(read_file(dir / "assembly.svg").find("(no wearability label)"), std::string::npos);
-  for (const char* name : {"assembly.svg", "assembly.pdf", "assembly-3d.png"})
+  for (const char* name : {"assembly.svg", "assembly.pdf", "assembly-3d.png", "assembly.json"})
     fs::remove(dir / name);
 
   fs::remove(dir / "cuts.json");
@@ -329,7 +329,7 @@ TEST(AssemblyTest, MissingOrCorruptFilesGiveAClearErrorAndWriteNothing) {
   write_file(layout, layout_text);
   r = run_wearknit("assembly " + d + " -q");
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(guide_files(dir).size(), 3u);
+  EXPECT_EQ(guide_files(dir).size(), 4u);  // the guide's three files and assembly.json
 
   // A page as a picture, and its usage errors.
   const fs::path page = dir / "page-1.png";

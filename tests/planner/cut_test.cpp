@@ -6,8 +6,8 @@
 #include <iostream>
 #include <set>
 
-#include "planner/cut/cut_io.hpp"
 #include "planner/mesh/mesh_io.hpp"
+#include "planner/pipeline.hpp"
 #include "planner/proxy/proxy.hpp"
 #include "tests/planner/test_meshes.hpp"
 #include "tests/test_support.hpp"
@@ -223,12 +223,18 @@ TEST(CutTest, VerifyCatchesABrokenCut) {
 TEST(CutIoTest, FolderRoundTrips) {
   const CutMesh cut = cut_of(test_meshes::cube(4), 2);
   const auto dir = wearknit::test::make_temp_dir("cut_io");
-  CutReport report;
-  report.input = "cube";
-  ASSERT_EQ(write_cut_result(dir.string(), cut, report), "");
+  Cut written{cut, {}, 0};
+  written.report.input = "cube";
+  std::uint64_t id = 0;
+  ASSERT_EQ(write_cut(dir.string(), written, {false, 600}, &id), "");
   knitout::DiagnosticSink sink;
-  const auto back = read_cut_result(dir.string(), sink);
-  ASSERT_TRUE(back.has_value()) << knitout::format(sink.diagnostics().at(0));
+  const auto read = read_cut(dir.string(), sink);
+  ASSERT_TRUE(read.has_value()) << knitout::format(sink.diagnostics().at(0));
+  // The id the files record is the one write_cut gave, and the report comes back.
+  EXPECT_NE(id, 0u);
+  EXPECT_EQ(read->id, id);
+  EXPECT_EQ(read->report.input, "cube");
+  const CutMesh* back = &read->mesh;
   EXPECT_EQ(back->proxy.polygons().faces, cut.proxy.polygons().faces);
   EXPECT_EQ(back->cut_edge, cut.cut_edge);
   EXPECT_EQ(back->direction, cut.direction);
@@ -248,7 +254,7 @@ TEST(CutIoTest, FolderRoundTrips) {
 
 TEST(CutIoTest, MissingFolderIsADiagnostic) {
   knitout::DiagnosticSink sink;
-  EXPECT_FALSE(read_cut_result("/nonexistent/cut", sink).has_value());
+  EXPECT_FALSE(read_cut("/nonexistent/cut", sink).has_value());
   ASSERT_EQ(sink.diagnostics().size(), 4u);
   EXPECT_EQ(
       knitout::format(sink.diagnostics()[0]),
@@ -258,14 +264,14 @@ TEST(CutIoTest, MissingFolderIsADiagnostic) {
 TEST(CutIoTest, ArcOverANonEdgeIsADiagnostic) {
   const CutMesh cut = cut_of(test_meshes::torus(6, 4));
   const auto dir = wearknit::test::make_temp_dir("cut_io_bad");
-  ASSERT_EQ(write_cut_result(dir.string(), cut, {}), "");
-  std::string cuts = wearknit::test::read_file(dir / "cuts.json");
+  ASSERT_EQ(write_cut(dir.string(), Cut{cut, {}, 0}, {false, 600}), "");
+  std::string cuts = wearknit::test::read_file(dir / "cut.json");
   const auto pos = cuts.find("\"edges\": [");
   ASSERT_NE(pos, std::string::npos);
   cuts.insert(pos + 10, "[0, 99999], ");
-  wearknit::test::write_file(dir / "cuts.json", cuts);
+  wearknit::test::write_file(dir / "cut.json", cuts);
   knitout::DiagnosticSink sink;
-  EXPECT_FALSE(read_cut_result(dir.string(), sink).has_value());
+  EXPECT_FALSE(read_cut(dir.string(), sink).has_value());
   ASSERT_EQ(sink.diagnostics().size(), 1u);
   EXPECT_EQ(sink.diagnostics()[0].code, "P022");
   EXPECT_NE(sink.diagnostics()[0].message.find("0-99999 is not an edge of proxy.obj"),

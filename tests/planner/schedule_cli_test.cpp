@@ -30,14 +30,17 @@ TempDir plan_folder(const StitchMesh& mesh, const std::string& prefix) {
   return dir;
 }
 
-TEST(ScheduleCliTest, WritesPiecesAndMergesTheReport) {
+TEST(ScheduleCliTest, WritesPiecesTheScheduleFileAndTheReport) {
   const TempDir folder = plan_folder(fixtures::y_shape(12, 3, 4, 3), "sched-y");
   const fs::path& dir = folder.path();
-  wearknit::test::write_file(dir / "report.json", "{\"cut\": {\"arcs\": 3}}\n");
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 5");
   ASSERT_EQ(result.exit_code, 0) << result.err;
+  // schedule.json is the stage's own file; report.json is the folder's
+  // summary made from it.
+  const json schedule = json::parse(wearknit::test::read_file(dir / "schedule.json"));
+  EXPECT_EQ(schedule["format"], "wearknit-schedule 1");
   const json report = json::parse(wearknit::test::read_file(dir / "report.json"));
-  EXPECT_EQ(report["cut"]["arcs"], 3);
+  EXPECT_EQ(report["schedule"], schedule["report"]);
   EXPECT_EQ(report["schedule"]["trials"], 5);
   EXPECT_EQ(report["schedule"]["cuts_per_trial"].size(), 5u);
   EXPECT_EQ(report["schedule"]["cuts"], 0);
@@ -110,7 +113,8 @@ TEST(ScheduleCliTest, MissingStitchMeshIsAnIoError) {
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string());
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(result.err,
-            (dir / "stitch-mesh.smobj").string() + ": error: [S900] cannot open the stitch mesh\n");
+            (dir / "stitch-mesh.smobj").string() +
+                ": error: [S900] cannot open the stitch mesh (run wearknit stitch-mesh)\n");
 }
 
 TEST(ScheduleCliTest, UnschedulableMeshIsInvalidInput) {

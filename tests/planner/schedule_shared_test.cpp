@@ -28,13 +28,12 @@
 #include "backends/dat/raster.hpp"
 #include "knitout/parser.hpp"
 #include "planner/cut/cut.hpp"
-#include "planner/cut/cut_io.hpp"
 #include "planner/mesh/mesh_io.hpp"
+#include "planner/pipeline.hpp"
 #include "planner/proxy/proxy.hpp"
 #include "planner/schedule/knitout_emit.hpp"
 #include "planner/schedule/schedule.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
-#include "planner/stitch_mesh/stitch_mesh_io.hpp"
 #include "planner/stitch_mesh/stitch_mesher.hpp"
 #include "simulators/bed/knit_graph.hpp"
 #include "simulators/bed/validate.hpp"
@@ -115,12 +114,12 @@ void stitch_shared(const fs::path& file, const std::string& name, std::optional<
   // `wearknit plan` (the stitch mesh depends on the rounding of the files).
   const CutMesh cut = cut_surface(HalfedgeMesh(std::move(proxy.mesh)), CutParams{});
   const fs::path dir = wearknit::test::make_temp_dir("schedule_shared");
-  ASSERT_EQ(write_cut_result(dir.string(), cut, CutReport{}), "") << name;
+  ASSERT_EQ(write_cut(dir.string(), Cut{cut, {}, 0}, {false, 600}), "") << name;
   knitout::DiagnosticSink cut_sink;
-  const std::optional<CutMesh> cut_back = read_cut_result(dir.string(), cut_sink);
+  const std::optional<Cut> cut_back = read_cut(dir.string(), cut_sink);
   fs::remove_all(dir);
   ASSERT_TRUE(cut_back) << name << ": " << knitout::format(cut_sink.diagnostics().front());
-  const LabelledDisc disc = labelled_disc(*cut_back);
+  const LabelledDisc disc = labelled_disc(cut_back->mesh);
   ASSERT_TRUE(check_disc(disc).empty()) << name << ": the cut is not a disc";
   const StitchMeshResult stitched = make_stitch_mesh(disc, StitchMeshParams{});
   if (!stitched.problems.empty()) {

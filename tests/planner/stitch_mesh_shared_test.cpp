@@ -21,10 +21,10 @@
 
 #include "planner/cut/cut.hpp"
 #include "planner/mesh/mesh_io.hpp"
+#include "planner/pipeline.hpp"
 #include "planner/proxy/proxy.hpp"
 #include "planner/proxy/remesh.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
-#include "planner/stitch_mesh/stitch_mesh_io.hpp"
 #include "planner/stitch_mesh/stitch_mesher.hpp"
 #include "planner/wearability/wearability.hpp"
 #include "tests/planner/stitch_discs.hpp"

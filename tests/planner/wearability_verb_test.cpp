@@ -7,9 +7,8 @@
 #include <sstream>
 
 #include "planner/cut/cut.hpp"
-#include "planner/cut/cut_io.hpp"
 #include "planner/mesh/mesh_io.hpp"
-#include "planner/wearability/recut.hpp"
+#include "planner/pipeline.hpp"
 #include "planner/wearability/wearability_io.hpp"
 #include "tests/planner/cover_shapes.hpp"
 #include "tests/test_support.hpp"
@@ -26,8 +25,9 @@ std::string obj_text(const std::vector<Vec3>& vertices,
   return out.str();
 }
 
-// A cut folder as `wearknit cut` writes it: the cut-mesh split along every
-// cut, and its arcs in the split mesh's vertex indices.
+// A garment made by hand, as the wearability stage takes it: the cut-mesh
+// split along every cut, and its arcs (cut.json) in the split mesh's vertex
+// indices.
 fs::path write_cut_folder(const CoverMesh& cover, const std::string& name) {
   const fs::path dir = make_temp_dir(name);
   std::vector<int> source;
@@ -43,7 +43,7 @@ fs::path write_cut_folder(const CoverMesh& cover, const std::string& name) {
     for (const auto& [u, v] : cover.arcs[a].edges) edges.push_back({copy_of[u], copy_of[v]});
     cuts["arcs"].push_back({{"id", a}, {"edges", edges}, {"kept", "as written"}});
   }
-  write_file(dir / "cuts.json", cuts.dump(1));
+  write_file(dir / "cut.json", cuts.dump(1));
   return dir;
 }
 
@@ -92,13 +92,11 @@ TEST(WearabilityVerbTest, ClosedShellIsRejectedAndEveryArcLaced) {
                    " --trials 2 --max-steps 600 --resolution 24 --cloth-vertices 0");
   EXPECT_EQ(result.exit_code, 1);
   // The folder has no proxy.obj to cut again (§5's re-cut needs one).
-  EXPECT_EQ(result.err, (dir / "cuts.json").string() +
+  EXPECT_EQ(result.err, (dir / "wearability.json").string() +
                             ": error: [W020] the garment with every cut open did not come off the "
                             "wearer in 2 trials of 600 steps, with the cut of an unrecorded seed "
-                            "(the folder's); cannot cut again: " +
-                            dir.string() +
-                            " has no proxy.obj and report.json (not a folder written by wearknit "
-                            "cut); every arc is labelled lace\n");
+                            "(the folder's); cannot cut again: a garment made by hand (no "
+                            "proxy.obj) cannot be cut again; every arc is labelled lace\n");
   const auto cuts = nlohmann::json::parse(read_file(dir / "cuts.json"));
   EXPECT_EQ(cuts["arcs"][0]["label"], "lace");
   EXPECT_EQ(cuts["wearability"]["wearable"], false);
@@ -106,7 +104,7 @@ TEST(WearabilityVerbTest, ClosedShellIsRejectedAndEveryArcLaced) {
 }
 
 // A torus cover cut by `wearknit cut`, then given a first cut that cannot
-// work: its cuts.json lists no arc, so the garment is a closed shell around
+// work: its cut.json lists no arc, so the garment is a closed shell around
 // the torus. Returns the cut folder; the wearer is DIR/../torus.obj.
 fs::path write_closed_torus_cut(const std::string& name) {
   const fs::path dir = make_temp_dir(name);
@@ -120,10 +118,10 @@ fs::path write_closed_torus_cut(const std::string& name) {
       run_wearknit("cut " + (dir / "garment.obj").string() + " -o " + (dir / "cut").string() +
                    " --seed 1 --picture-px 60 --quiet --vanishing regular --vanishing-slack 25");
   EXPECT_EQ(cut.exit_code, 0) << cut.err;
-  auto cuts = nlohmann::json::parse(read_file(dir / "cut" / "cuts.json"));
+  auto cuts = nlohmann::json::parse(read_file(dir / "cut" / "cut.json"));
   EXPECT_GE(cuts["arcs"].size(), 2u) << "a torus needs two loops cut";
   cuts["arcs"] = nlohmann::json::array();
-  write_file(dir / "cut" / "cuts.json", cuts.dump(1));
+  write_file(dir / "cut" / "cut.json", cuts.dump(1));
   return dir;
 }
 
@@ -186,11 +184,11 @@ TEST(WearabilityVerbTest, UnwearableCutIsCutAgainWithAnotherSeed) {
 
   // The rewritten folder is a consistent cut folder, pictures redrawn at their size.
   knitout::DiagnosticSink sink;
-  const auto reread = planner::read_cut_result(cut.string(), sink);
+  const auto reread = planner::read_cut(cut.string(), sink);
   ASSERT_TRUE(reread.has_value()) << (sink.diagnostics().empty() ? ""
                                                                  : sink.diagnostics()[0].message);
-  EXPECT_EQ(planner::verify_cut(*reread), std::vector<std::string>{});
-  EXPECT_EQ(reread->arcs.size(), cuts["arcs"].size());
+  EXPECT_EQ(planner::verify_cut(reread->mesh), std::vector<std::string>{});
+  EXPECT_EQ(reread->mesh.arcs.size(), cuts["arcs"].size());
   EXPECT_EQ(png_extent(cut / "cuts-3d.png"), 120);
   EXPECT_NEAR(png_extent(cut / "layout-2d.png"), 100, 1);
   fs::remove_all(dir);
@@ -206,7 +204,7 @@ TEST(WearabilityVerbTest, NoWearableCutWithinTheLimitIsW020NamingEveryAttempt) {
                            " --trials 1 --max-steps 10 --seed 3 --resolution 24 --cloth-vertices 0";
   auto result = run_wearknit(base + " --recut-limit 0");
   EXPECT_EQ(result.exit_code, 1);
-  EXPECT_EQ(result.err, (cut / "cuts.json").string() +
+  EXPECT_EQ(result.err, (cut / "wearability.json").string() +
                             ": error: [W020] the garment with every cut open did not come off the "
                             "wearer in 1 trials of 10 steps, with the cut of seed 1 (the folder's) "
                             "(--recut-limit 0); every arc is labelled lace\n");
@@ -217,7 +215,7 @@ TEST(WearabilityVerbTest, NoWearableCutWithinTheLimitIsW020NamingEveryAttempt) {
   result = run_wearknit(base + " --recut-limit 2");
   EXPECT_EQ(result.exit_code, 1);
   const std::uint64_t first = planner::recut_seed(3, 1), second = planner::recut_seed(3, 2);
-  EXPECT_EQ(result.err, (cut / "cuts.json").string() +
+  EXPECT_EQ(result.err, (cut / "wearability.json").string() +
                             ": error: [W020] the garment with every cut open did not come off the "
                             "wearer in 1 trials of 10 steps, with each of the cuts of seed 1 (the "
                             "folder's), seed " +
@@ -263,12 +261,13 @@ TEST(WearabilityVerbTest, ARunKilledMidwayResumesFromItsJournal) {
 
   // The same run killed (SIGKILL) once the initial test and one more are in
   // its journal.
-  const std::string before = read_file(dir / "cuts.json");
+  const std::string before = read_file(dir / "cut.json");
   const bool killed =
       run_wearknit_and_kill("wearability " + dir.string() + options + " -q", journal, 3);
   ASSERT_TRUE(killed) << "the run ended before it could be killed";
   ASSERT_TRUE(fs::exists(journal));
-  EXPECT_EQ(read_file(dir / "cuts.json"), before) << "a killed run writes no labels";
+  EXPECT_EQ(read_file(dir / "cut.json"), before) << "the stage's input is left as it was";
+  EXPECT_FALSE(fs::exists(dir / "wearability.json")) << "a killed run writes no labels";
 
   const auto resumed = run_wearknit("wearability " + dir.string() + options);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
@@ -290,14 +289,14 @@ TEST(WearabilityVerbTest, BadFolderGivesDiagnostics) {
   auto result =
       run_wearknit("wearability " + dir.string() + " --wearer " + (dir / "w.obj").string());
   EXPECT_EQ(result.exit_code, 2);
-  EXPECT_EQ(result.err, (dir / "cuts.json").string() + ": error: [W004] cannot open file\n");
+  EXPECT_EQ(result.err, (dir / "cut.json").string() + ": error: [W004] cannot open file\n");
 
-  write_file(dir / "cuts.json", R"({"arcs": [{"edges": [[0, 1], [1, 0]]}]})");
+  write_file(dir / "cut.json", R"({"arcs": [{"edges": [[0, 1], [1, 0]]}]})");
   result = run_wearknit("wearability " + dir.string() + " --wearer " + (dir / "w.obj").string());
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
-            (dir / "cuts.json").string() + ": error: [W011] arc 0 edge 1 (1-0) is also in arc 0\n");
-  const std::string before = read_file(dir / "cuts.json");
+            (dir / "cut.json").string() + ": error: [W011] arc 0 edge 1 (1-0) is also in arc 0\n");
+  const std::string before = read_file(dir / "cut.json");
   EXPECT_EQ(before, R"({"arcs": [{"edges": [[0, 1], [1, 0]]}]})") << "nothing written on error";
 
   result = run_wearknit("wearability " + dir.string());

@@ -1,0 +1,164 @@
+#include "apps/wearknit/stage_options.hpp"
+
+#include <cmath>
+
+namespace wearknit::cli {
+
+namespace po = boost::program_options;
+
+void add_cut_options(po::options_description& options, CutOptions& cut) {
+  planner::CutParams& p = cut.params.cut;
+  options.add_options()("cs", po::value<double>(&p.cs)->default_value(1000.0),
+                        "straightness weight c_s (motorcycle-graph edges, §4.2)")(
+      "co", po::value<double>(&p.co)->default_value(1.0), "overlap weight c_o (§4.2)")(
+      "vanishing", po::value<std::string>(&cut.vanishing)->default_value("acute"),
+      "vanishing corner of each triangle: acute (its most acute corner, §4.1) or regular "
+      "(a corner within --vanishing-slack of it that leaves fewer irregular vertices)")(
+      "vanishing-slack", po::value<double>(&cut.vanishing_slack_deg)->default_value(30.0),
+      "degrees a regular vanishing corner may be wider than the most acute one")(
+      "proxy-edge-mm", po::value<double>(&cut.params.proxy.proxy_edge_mm)->default_value(0.0),
+      "edge length of the remeshed proxy for triangle input (0: about 3000 quads)");
+}
+
+std::string check_cut_options(CutOptions& cut) {
+  planner::CutParams& p = cut.params.cut;
+  if (!(cut.params.proxy.proxy_edge_mm >= 0.0) || !(p.cs >= 0.0) || !(p.co >= 0.0))
+    return "--proxy-edge-mm, --cs and --co must not be negative";
+  if (cut.vanishing != "acute" && cut.vanishing != "regular")
+    return "--vanishing takes acute or regular, not '" + cut.vanishing + "'";
+  if (!(cut.vanishing_slack_deg >= 0.0) || cut.vanishing_slack_deg > 180.0)
+    return "--vanishing-slack must be between 0 and 180 degrees";
+  p.vanishing.fewest_irregular = cut.vanishing == "regular";
+  p.vanishing.slack_deg = cut.vanishing_slack_deg;
+  return {};
+}
+
+void add_stitch_mesh_options(po::options_description& options, StitchMeshOptions& stitch) {
+  planner::StitchMeshParams& p = stitch.params.mesher;
+  options.add_options()(
+      "gauge", po::value<double>(&stitch.params.gauge.needles_per_inch)->default_value(15.0),
+      "machine gauge, needles per inch")(
+      "swatch", po::value<std::string>(&stitch.swatch)->default_value(stitch.swatch),
+      "measured swatch STITCHESxROWS:WIDTHxHEIGHT_MM (the paper's seed swatch, §8.1)")(
+      "stitch-mm", po::value<std::string>(&stitch.stitch_mm),
+      "stitch size COURSExWALE in mm, instead of --swatch")(
+      "straighten", po::value<int>(&p.straighten_iterations)->default_value(100),
+      "at most this many fits of the row time towards unit row height after the fit to the "
+      "labels; they stop once the row time moves less than 0.01 row")(
+      "label-weight", po::value<double>(&p.label_weight)->default_value(0.1),
+      "weight of the labelled wale direction in each straightening fit")(
+      "pentagon-cost", po::value<double>(&p.pentagon_cost)->default_value(0.05),
+      "cost of an increase or decrease against a wale side's squared relative length error")(
+      "stability-cost", po::value<double>(&p.stability_cost)->default_value(1.0),
+      "cost of breaking a Fig. 7 rule of thumb (docs/stitch-mesh.md); 0 ignores them")(
+      "outside-cost", po::value<double>(&p.outside_cost)->default_value(0.05),
+      "extra cost of a wale side more than 15% off its target length")(
+      "row-end-wales", po::value<double>(&p.tip_side_wales)->default_value(0.9),
+      "a row that meets an oblique boundary in a point ends in a wale side this many wales "
+      "long instead; 0 keeps the point")(
+      "saddle-wales", po::value<double>(&p.saddle_wales)->default_value(5.0),
+      "hold the row time's saddles where rows would go round them on a level, moving the rows "
+      "within this many wales of each; 0 leaves them")(
+      "relax", po::value<int>(&p.relax_sweeps)->default_value(150),
+      "at most this many sweeps moving the inner stitch vertices over the surface towards "
+      "their sides' target lengths; 0 keeps them as zipped");
+}
+
+std::string check_stitch_mesh_options(const po::variables_map& values, StitchMeshOptions& stitch) {
+  planner::StitchGauge& gauge = stitch.params.gauge;
+  std::string problem;
+  if (values.count("stitch-mm") != 0) {
+    if (!values["swatch"].defaulted()) return "give --swatch or --stitch-mm, not both";
+    problem = planner::parse_stitch_mm(stitch.stitch_mm, gauge);
+  } else {
+    problem = planner::parse_swatch(stitch.swatch, gauge);
+  }
+  if (problem.empty()) problem = planner::check_gauge(gauge);
+  const planner::StitchMeshParams& p = stitch.params.mesher;
+  if (problem.empty() &&
+      (p.straighten_iterations < 0 || !(p.label_weight >= 0) || !(p.pentagon_cost >= 0) ||
+       !(p.stability_cost >= 0) || !(p.outside_cost >= 0) || !(p.tip_side_wales >= 0) ||
+       p.relax_sweeps < 0 || !(p.saddle_wales >= 0))) {
+    problem =
+        "--straighten, --label-weight, --pentagon-cost, --stability-cost, --outside-cost, "
+        "--row-end-wales, --saddle-wales and --relax must not be negative";
+  }
+  return problem;
+}
+
+void add_wearability_options(po::options_description& options, WearabilityOptions& wear,
+                             const char* trials_name) {
+  planner::WearabilityStageParams& p = wear.params;
+  options.add_options()(trials_name, po::value<int>(&p.test.trials)->default_value(p.test.trials),
+                        "wearability: K trials per test, each with its own global-force "
+                        "directions")(
+      "runs", po::value<int>(&p.runs)->default_value(1),
+      "wearability: R eliminations with different arc orders (probability of lacing, Fig. 18)")(
+      "recut-limit", po::value<int>(&p.recut_limit)->default_value(p.recut_limit),
+      "wearability: re-cuts with other seeds when the garment with every cut open is not "
+      "wearable (§5)")(
+      "max-steps", po::value<int>(&p.test.cloth.max_steps)->default_value(p.test.cloth.max_steps),
+      "wearability: steps before a trial counts as failed")(
+      "resolution", po::value<int>(&p.sdf_resolution)->default_value(p.sdf_resolution),
+      "wearability: distance-field cells along the wearer's longest side")(
+      "cloth-vertices", po::value<int>(&p.cloth_vertices)->default_value(p.cloth_vertices),
+      "wearability: subdivide a garment with fewer vertices until it has this many, so it can "
+      "bend around the wearer (0 = never)")(
+      "one-at-a-time",
+      "wearability: test each arc on its own, as §5 does, instead of closing runs of arcs "
+      "together while the garment keeps coming off");
+}
+
+std::string check_wearability_options(const po::variables_map& values, WearabilityOptions& wear) {
+  const planner::WearabilityStageParams& p = wear.params;
+  if (p.test.trials < 1 || p.runs < 1 || p.test.cloth.max_steps < 1 || p.sdf_resolution < 8 ||
+      p.recut_limit < 0 || p.cloth_vertices < 0) {
+    return "the trials, --runs and --max-steps must be positive, --recut-limit and "
+           "--cloth-vertices not negative, --resolution at least 8";
+  }
+  wear.params.test.group_testing = values.count("one-at-a-time") == 0;
+  return {};
+}
+
+void add_schedule_options(po::options_description& options, ScheduleOptions& schedule) {
+  planner::ScheduleParams& p = schedule.params.schedule;
+  options.add_options()("trials", po::value<int>(&p.trials)->default_value(p.trials),
+                        "schedule: random knitting orders to try (§7.3)")(
+      "time-budget", po::value<double>(&schedule.time_budget_s),
+      "schedule: seconds to spend trying orders instead of a number of trials")(
+      "pattern", po::value<std::string>(&schedule.pattern)->default_value("plain"),
+      "stitch pattern: plain or seed")(
+      "max-shift", po::value<int>(&p.max_patch_shift)->default_value(planner::kMaxPatchShift),
+      "schedule: needles a patch may be moved sideways to clear held loops (0 to 8)")(
+      "max-aside", po::value<int>(&p.max_aside)->default_value(planner::kMaxAside),
+      "schedule: needles loops held for a later row may be moved out of a patch's way (0 to 8)")(
+      "improve", po::value<int>(&p.improve)->default_value(p.improve),
+      "schedule: best random orders refined by a local search that moves the patches of each "
+      "cut (0: random orders only, as in §7.3)");
+}
+
+std::string check_schedule_options(const po::variables_map& values, ScheduleOptions& schedule) {
+  planner::ScheduleParams& p = schedule.params.schedule;
+  const bool budget = values.count("time-budget") != 0;
+  if (budget && !values["trials"].defaulted()) return "give --trials or --time-budget, not both";
+  if (budget && !(schedule.time_budget_s > 0)) return "--time-budget must be more than 0 seconds";
+  if (p.trials < 1) return "--trials must be at least 1";
+  if (p.improve < 0) return "--improve must not be negative";
+  if (p.max_patch_shift < 0 || p.max_patch_shift > 8)
+    return "--max-shift takes 0 to 8 (the racking limit)";
+  if (p.max_aside < 0 || p.max_aside > 8) return "--max-aside takes 0 to 8 (the racking limit)";
+  p.time_budget_s = budget ? schedule.time_budget_s : 0;
+  if (schedule.pattern == "seed") {
+    schedule.params.emit.pattern = planner::StitchPattern::Seed;
+  } else if (schedule.pattern != "plain") {
+    return "--pattern takes plain or seed, not '" + schedule.pattern + "'";
+  }
+  return {};
+}
+
+void add_threads_option(po::options_description& options, int& threads) {
+  options.add_options()("threads", po::value<int>(&threads)->default_value(0),
+                        "threads for the trials (0: all cores); results depend only on the seed");
+}
+
+}  // namespace wearknit::cli

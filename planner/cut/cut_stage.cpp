@@ -1,0 +1,88 @@
+#include "planner/cut/cut_stage.hpp"
+
+#include <chrono>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/pipeline.hpp"
+
+namespace planner {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Cuts `proxy` with `params` and checks the cut's guarantees.
+CutMesh checked_cut(HalfedgeMesh proxy, const CutParams& params) {
+  CutMesh cut = cut_surface(std::move(proxy), params);
+  const std::vector<std::string> problems = verify_cut(cut);
+  if (!problems.empty()) {
+    std::string message =
+        "the cut with seed " + std::to_string(params.seed) + " violates its guarantees:";
+    for (const std::string& p : problems) message += "\n  " + p;
+    throw std::logic_error(message);
+  }
+  return cut;
+}
+
+}  // namespace
+
+Cut cut_garment(const PolygonMesh& garment, const CutStageParams& params) {
+  Cut result;
+  CutReport& report = result.report;
+  report.params = params.cut;
+  report.input_size_mm = bounding_box_size(garment);
+  report.input_vertices = static_cast<int>(garment.positions.size());
+  report.input_faces = static_cast<int>(garment.faces.size());
+
+  auto start = std::chrono::steady_clock::now();
+  ProxyResult proxy = make_proxy(garment, params.proxy);
+  report.remeshed = proxy.remeshed;
+  report.proxy_edge_mm = proxy.edge_mm;
+  report.polygons_split = proxy.polygons_split;
+  report.triangles_paired = proxy.triangles_paired;
+  report.samples = proxy.samples;
+  report.holes_filled = proxy.holes_filled;
+  report.folds_removed = proxy.folds_removed;
+  report.remesh_attempts = proxy.remesh_attempts;
+  report.proxy_method = proxy.method;
+  report.remesh_failure = proxy.remesh_failure;
+  report.proxy_seconds = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  result.mesh = checked_cut(HalfedgeMesh(std::move(proxy.mesh)), params.cut);
+  report.cut_seconds = seconds_since(start);
+  return result;
+}
+
+Cut recut(const Cut& cut, std::uint64_t seed) {
+  Cut result;
+  result.report = cut.report;
+  result.report.params.seed = seed;
+  const auto start = std::chrono::steady_clock::now();
+  result.mesh = checked_cut(HalfedgeMesh(cut.mesh.proxy.polygons()), result.report.params);
+  result.report.cut_seconds = seconds_since(start);
+  return result;
+}
+
+std::string describe(const Cut& cut) {
+  const CutReport& r = cut.report;
+  const CutSummary s = summarize(cut.mesh);
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << r.input << ": " << r.input_size_mm.x() << " x "
+       << r.input_size_mm.y() << " x " << r.input_size_mm.z() << " mm; proxy "
+       << cut.mesh.proxy.num_faces() << " faces"
+       << (r.remeshed ? " (remeshed: " + r.proxy_method + ")" : std::string(" (input as is)"))
+       << "\n"
+       << "cut: " << s.irregular_vertices << " irregular vertices, " << s.cut_edges
+       << " cut edges in " << s.arcs << " arcs, " << s.cut_length_mm << " mm, "
+       << s.overlapping_faces << " overlapping faces, " << std::setprecision(3)
+       << r.proxy_seconds + r.cut_seconds << " s\n";
+  return text.str();
+}
+
+}  // namespace planner

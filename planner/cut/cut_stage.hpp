@@ -1,0 +1,66 @@
+// The cut stage's types (§4; the functions are in planner/pipeline.hpp): the
+// garment's quad-dominant proxy Q (§4.1, proxy/proxy.hpp) cut into one
+// topological disc whose faces agree on the course and wale directions
+// (§4.1-4.2, cut.hpp).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "planner/cut/cut.hpp"
+#include "planner/mesh/mesh.hpp"
+#include "planner/proxy/proxy.hpp"
+
+namespace planner {
+
+// What the stage says about a run besides the CutMesh itself.
+struct CutReport {
+  std::string input;  // the garment's file, as the user named it
+  std::string units = "mm";
+  double scale = 1.0;
+  Vec3 input_size_mm = Vec3::Zero();
+  int input_vertices = 0;
+  int input_faces = 0;
+  bool remeshed = false;
+  double proxy_edge_mm = 0.0;
+  int polygons_split = 0;
+  int triangles_paired = 0;
+  int samples = 0;          // surface samples the remesh solved its fields on
+  int holes_filled = 0;     // holes of the extraction closed by a polygon
+  int folds_removed = 0;    // quads of nil area where the lattice folded, welded
+  int remesh_attempts = 0;  // extractions tried, at spacings a few percent apart
+  std::string proxy_method = "input";
+  std::string remesh_failure;
+  CutParams params;
+  int picture_px = 0;  // the size of cuts-3d.png's views as cut.json records it; 0 = not drawn
+  double load_seconds = 0.0;
+  double proxy_seconds = 0.0;
+  double cut_seconds = 0.0;
+};
+
+// A cut and its report: the stage's output, and what later stages read.
+struct Cut {
+  CutMesh mesh;
+  CutReport report;
+  // The fingerprint of the cut as its files hold it, set by read_cut (0 for
+  // a cut not read from a folder). Later stages record the id of the cut
+  // they used, so a folder tells when their files belong to another cut.
+  std::uint64_t id = 0;
+};
+
+struct CutStageParams {
+  ProxyParams proxy;
+  CutParams cut;
+};
+
+// The pictures of Fig. 5 (cut_pictures.hpp) that write_cut draws.
+struct CutPictures {
+  bool draw = true;
+  int panel_px = 600;  // one of the 2x2 views of cuts-3d.png; layout-2d.png is 5/3 of it
+};
+
+// The stage's summary, two lines as `wearknit cut` prints them: the input
+// and proxy, then the cut.
+std::string describe(const Cut& cut);
+
+}  // namespace planner

@@ -1,0 +1,58 @@
+// The stitch-mesh stage's types (§6; the functions are in
+// planner/pipeline.hpp): the cut disc remeshed into stitches of the
+// machine's course x wale size (stitch_mesher.hpp), with its figures.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "planner/cut/cut.hpp"
+#include "planner/stitch_mesh/gauge.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
+#include "planner/stitch_mesh/stitch_mesher.hpp"
+
+namespace planner {
+
+struct StitchMeshStageParams {
+  StitchGauge gauge;        // the target course and wale lengths (§6.1, §8.1)
+  StitchMeshParams mesher;  // its course_mm and wale_mm are the gauge's
+};
+
+// The stage's figures (stitch-mesh.json's "report", report.json's "stitch_mesh").
+struct StitchMeshReport {
+  StitchGauge gauge;
+  StitchMeshFigures figures;
+  StitchMeshStats stats;
+  StabilityCounts stability;
+  OffSurface off_surface;
+  double disc_area_mm2 = 0;
+  double seconds = 0;  // the whole stage
+};
+
+struct StitchMeshOutcome {
+  StitchMesh mesh;
+  StitchMeshReport report;
+  std::uint64_t cut_id = 0;  // the cut it was made from (Cut::id)
+};
+
+// A stitch mesh as the scheduler reads it from a folder.
+struct StitchMeshFile {
+  StitchMesh mesh;
+  std::uint64_t id = 0;      // fingerprint of stitch-mesh.smobj's bytes
+  std::uint64_t cut_id = 0;  // from stitch-mesh.json; 0 when the folder has none
+};
+
+// The cut disc with its side directions (cut.direction, per half-edge of the
+// proxy, whose faces the disc keeps in order) and, for sides on a cut, the
+// index of the cut-arc in cut.arcs (as in cut.json).
+LabelledDisc labelled_disc(const CutMesh& cut);
+
+// stitch-mesh.obj: the faces as polygons, then `# type` comment lines
+// (one per face: knit, increase, decrease, short-row).
+void write_stitch_obj(std::ostream& out, const StitchMesh& mesh);
+
+// "stitch mesh: N stitches (...) in R rows; course ...; wale ...; T s" as
+// the verb prints it.
+std::string describe(const StitchMeshOutcome& outcome);
+
+}  // namespace planner

@@ -1,0 +1,300 @@
+#include "planner/wearability/wearability_stage.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+
+#include "knitout/output_file.hpp"
+#include "planner/common/hash.hpp"
+#include "planner/common/json_file.hpp"
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/pipeline.hpp"
+#include "planner/wearability/wearability_io.hpp"
+#include "planner/wearability/wearability_picture.hpp"
+
+namespace planner {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The seed of a successful trial of the final configuration: the last sewn
+// arc's test (the configuration did not change after it), else the test
+// with every cut open.
+std::uint64_t final_seed(const EliminationResult& result) {
+  const TestResult* last = &result.initial;
+  int position = -1;
+  for (const auto& arc : result.arcs) {
+    if (arc.label == Label::Sew && arc.position > position) {
+      position = arc.position;
+      last = &arc.test;
+    }
+  }
+  return last->trials.empty() ? 0 : last->trials.back().seed;
+}
+
+std::string seed_text(const std::optional<std::uint64_t>& seed) {
+  return seed ? "seed " + std::to_string(*seed) : std::string("an unrecorded seed");
+}
+
+// §5's loop: the elimination on the garment of the current cut; while no
+// run comes off with every cut open, the proxy of `cut` is cut again (when
+// there is a cut to cut again).
+Wearability label(CoverMesh garment, const Cut* cut, const cloth::SignedDistanceField& wearer,
+                  const WearabilityStageParams& params, const WearabilityCallbacks& callbacks) {
+  const auto start = std::chrono::steady_clock::now();
+  Wearability result;
+  result.params = params;
+  result.cut_id = cut != nullptr ? cut->id : 0;
+  WearabilityParams test = params.test;
+  test.record = callbacks.record;
+  std::optional<std::uint64_t> seed;
+  if (cut != nullptr) seed = cut->report.params.seed;
+  result.cover = std::move(garment);
+  for (int attempt = 0;; ++attempt) {
+    result.study = study_lacing(result.cover, wearer, test, params.runs, callbacks.progress);
+    CutAttempt tried;
+    tried.attempt = attempt;
+    tried.cut_seed = seed;
+    tried.arcs = static_cast<int>(result.cover.arcs.size());
+    tried.wearable = result.wearable();
+    if (!result.study.runs.empty()) tried.trials = result.study.runs.front().initial.trials;
+    result.attempts.push_back(tried);
+    if (callbacks.attempted) callbacks.attempted(tried);
+    if (tried.wearable || attempt >= params.recut_limit) break;
+
+    // §5: the garment with every cut open is not wearable: cut again.
+    CutAttempt next;
+    next.attempt = attempt + 1;
+    next.cut_seed = recut_seed(params.test.seed, attempt + 1);
+    if (cut == nullptr) {
+      next.failure = "a garment made by hand (no proxy.obj) cannot be cut again";
+    } else {
+      try {
+        result.recut = recut(*cut, *next.cut_seed);
+        result.cover = cover_of(*result.recut, params.cloth_vertices);
+        seed = next.cut_seed;
+        continue;
+      } catch (const std::logic_error& e) {
+        next.failure = std::string("internal error: ") + e.what();
+      }
+    }
+    result.attempts.push_back(next);
+    if (callbacks.attempted) callbacks.attempted(next);
+    break;
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+std::optional<std::uint64_t> Wearability::cut_seed() const {
+  for (auto it = attempts.rbegin(); it != attempts.rend(); ++it) {
+    if (it->failure.empty()) return it->cut_seed;
+  }
+  return std::nullopt;
+}
+
+std::uint64_t recut_seed(std::uint64_t wearability_seed, int attempt) {
+  // "CUT" tags the stream, apart from the runs' and trials' seeds.
+  return mix64(mix64(wearability_seed ^ 0x435554ULL) + static_cast<std::uint64_t>(attempt));
+}
+
+CoverMesh cover_of(const Cut& cut, int min_vertices) {
+  // The arcs as cuts.json lists them (vertex pairs of proxy.obj, which are
+  // the first vertices of the disc), read as a hand-made cuts.json is.
+  nlohmann::json arcs = nlohmann::json::array();
+  for (std::size_t a = 0; a < cut.mesh.arcs.size(); ++a) {
+    nlohmann::json edges = nlohmann::json::array();
+    const std::vector<int>& path = cut.mesh.arcs[a].vertices;
+    for (std::size_t k = 0; k + 1 < path.size(); ++k) edges.push_back({path[k], path[k + 1]});
+    arcs.push_back({{"id", a}, {"edges", edges}});
+  }
+  knitout::DiagnosticSink sink;
+  auto cover = read_cover_mesh(cut.mesh.disc, {{"arcs", arcs}}, "cut.json", sink);
+  if (!cover) {
+    throw std::logic_error("the cut's own arcs do not make a garment: " +
+                           (sink.diagnostics().empty() ? std::string("no reason given")
+                                                       : knitout::format(sink.diagnostics()[0])));
+  }
+  return refined_for_cloth(std::move(*cover), min_vertices);
+}
+
+cloth::SignedDistanceField wearer_field(const PolygonMesh& wearer,
+                                        const WearabilityStageParams& params) {
+  cloth::SdfParams sdf;
+  sdf.resolution = params.sdf_resolution;
+  sdf.threads = params.test.threads;
+  return cloth::SignedDistanceField(wearer.positions, wearer.faces, sdf);
+}
+
+std::uint64_t journal_context(const PolygonMesh& wearer, const WearabilityStageParams& params) {
+  std::ifstream program_in("/proc/self/exe", std::ios::binary);
+  const std::string program((std::istreambuf_iterator<char>(program_in)),
+                            std::istreambuf_iterator<char>());
+  std::ostringstream wearer_text;
+  write_obj(wearer_text, wearer);
+  std::ostringstream text;
+  text << "program " << fingerprint(program) << " wearer " << fingerprint(wearer_text.str())
+       << " trials " << params.test.trials << " max-steps " << params.test.cloth.max_steps
+       << " resolution " << params.sdf_resolution << " cloth-vertices " << params.cloth_vertices;
+  return fingerprint(text.str());
+}
+
+Wearability label_arcs(const Cut& cut, const cloth::SignedDistanceField& wearer,
+                       const WearabilityStageParams& params,
+                       const WearabilityCallbacks& callbacks) {
+  return label(cover_of(cut, params.cloth_vertices), &cut, wearer, params, callbacks);
+}
+
+Wearability label_garment(const CoverMesh& garment, const cloth::SignedDistanceField& wearer,
+                          const WearabilityStageParams& params,
+                          const WearabilityCallbacks& callbacks) {
+  return label(garment, nullptr, wearer, params, callbacks);
+}
+
+std::string describe(const Wearability& result) {
+  const LacingStudy& study = result.study;
+  const int chosen = chosen_run(study);
+  if (chosen < 0) return "wearability: not wearable\n";
+  int sewn = 0;
+  for (const auto& arc : study.runs[static_cast<std::size_t>(chosen)].arcs)
+    sewn += arc.label == Label::Sew;
+  double seconds = 0;
+  std::uint64_t steps = 0;
+  int replayed = 0;
+  for (const auto& run : study.runs) {
+    seconds += run.seconds;
+    steps += run.steps;
+    replayed += run.replayed;
+  }
+  const std::size_t arcs = result.cover.arcs.size();
+  std::ostringstream text;
+  text << "wearability: " << arcs << " arcs, " << sewn << " sew, " << arcs - sewn << " lace";
+  if (result.params.runs > 1)
+    text << " (run " << chosen + 1 << " of " << result.params.runs << ", most sewn)";
+  if (result.recut) {
+    text << "; re-cut with " << seed_text(result.cut_seed()) << " (attempt "
+         << result.attempts.size() - 1 << " of " << result.params.recut_limit << ")";
+  }
+  text << "; " << steps << " steps in " << std::fixed << std::setprecision(1) << seconds << " s";
+  if (replayed > 0) text << " (" << replayed << " tests read from the journal)";
+  text << '\n';
+  return text.str();
+}
+
+std::string not_wearable_message(const Wearability& result) {
+  std::ostringstream text;
+  text << "the garment with every cut open did not come off the wearer in "
+       << result.params.test.trials << " trials of " << result.params.test.cloth.max_steps
+       << " steps, ";
+  std::vector<std::string> made;
+  std::string not_made;
+  for (const auto& a : result.attempts) {
+    if (!a.failure.empty()) {
+      not_made = a.failure;
+    } else {
+      made.push_back(seed_text(a.cut_seed) + (a.attempt == 0
+                                                  ? std::string(" (the folder's)")
+                                                  : " (re-cut " + std::to_string(a.attempt) + ")"));
+    }
+  }
+  text << (made.size() == 1 ? "with the cut of " : "with each of the cuts of ");
+  for (std::size_t i = 0; i < made.size(); ++i) text << (i ? ", " : "") << made[i];
+  if (!not_made.empty()) {
+    text << "; cannot cut again: " << not_made;
+  } else if (made.size() == 1) {
+    text << " (--recut-limit " << result.params.recut_limit << ")";
+  }
+  text << "; every arc is labelled lace";
+  return text.str();
+}
+
+std::string write_wearability(const std::string& dir, const Wearability& result,
+                              std::uint64_t labelled_cut_id, bool picture) {
+  const fs::path base(dir);
+  std::string failure = write_json_file((base / "wearability.json").string(),
+                                        wearability_json(result, labelled_cut_id));
+  if (!failure.empty() || !picture) return failure;
+  // Green sewn, red laced; over several runs, the share of runs that laced
+  // the arc (Fig. 18).
+  std::vector<double> lace_share(result.cover.arcs.size(), 1.0);
+  const int chosen = chosen_run(result.study);
+  if (chosen >= 0) {
+    if (result.params.runs > 1) {
+      lace_share = result.study.lace_probability;
+    } else {
+      const auto open = result.study.runs[static_cast<std::size_t>(chosen)].open();
+      for (std::size_t a = 0; a < open.size(); ++a) lace_share[a] = open[a] ? 1.0 : 0.0;
+    }
+  }
+  return knitout::write_file_atomically(
+      (base / "wearability.png").string(),
+      [&](std::ostream& out) { draw_wearability(out, result.cover, lace_share); });
+}
+
+std::optional<WearabilityRecord> read_wearability(const std::string& dir,
+                                                  knitout::DiagnosticSink& sink) {
+  const std::string path = (fs::path(dir) / "wearability.json").string();
+  auto file = read_json_object(path, sink, "W004", "W010");
+  if (!file) return std::nullopt;
+  WearabilityRecord record;
+  try {
+    if (!parse_hex64(file->at("cut_id").get<std::string>(), record.cut_id))
+      throw std::runtime_error("\"cut_id\" is not 16 hex digits");
+    record.wearable = file->at("summary").at("wearable").get<bool>();
+    for (const auto& arc : file->at("arcs")) {
+      const std::string label = arc.at("label").get<std::string>();
+      if (label != "sew" && label != "lace")
+        throw std::runtime_error("label \"" + label + "\" is not sew or lace");
+      record.labels.push_back(label == "sew" ? Label::Sew : Label::Lace);
+    }
+  } catch (const std::exception& e) {
+    sink.error(path, 0, 0, "W010", std::string("unexpected content: ") + e.what());
+    return std::nullopt;
+  }
+  record.file = std::move(*file);
+  return record;
+}
+
+std::string write_strip_off_frames(const Wearability& result,
+                                   const cloth::SignedDistanceField& wearer, const std::string& dir,
+                                   int every, int* written, bool* off) {
+  *written = 0;
+  *off = false;
+  const int chosen = chosen_run(result.study);
+  if (chosen < 0) return "no configuration came off the wearer: no frames to write";
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error) return dir + ": cannot create folder: " + error.message();
+  const EliminationResult& run = result.study.runs[static_cast<std::size_t>(chosen)];
+  const CoverMesh dressed_mesh = dressed(result.cover, wearer, result.params.test.cloth);
+  const PolygonMesh garment = open_cuts(dressed_mesh, run.open());
+  // One thread: a garment of a few thousand vertices gains little from
+  // splitting a step, and loses much when the cores are busy.
+  cloth::ClothSimulation sim(garment, wearer, result.params.test.cloth);
+  std::string failure;
+  auto write_frame = [&](int step, const cloth::ClothSimulation& state) {
+    std::ostringstream name;
+    name << "frame-" << std::setw(5) << std::setfill('0') << step << ".obj";
+    failure = knitout::write_file_atomically(
+        (fs::path(dir) / name.str()).string(), [&](std::ostream& out) {
+          write_obj(out, PolygonMesh{state.positions(), state.mesh().faces});
+        });
+    ++*written;
+    return failure.empty();
+  };
+  write_frame(0, sim);
+  const auto outcome = sim.run(final_seed(run), [&](int step, const cloth::ClothSimulation& s) {
+    return step % every != 0 || write_frame(step, s);
+  });
+  *off = outcome.success;
+  return failure;
+}
+
+}  // namespace planner

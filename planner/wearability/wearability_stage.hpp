@@ -1,0 +1,111 @@
+// The wearability stage's types (§5, §8.2; the functions are in
+// planner/pipeline.hpp): which cut-arcs are sewn and which laced, decided by
+// stripping the garment off its wearer in simulation (wearability.hpp), with
+// the re-cut of §5 when the garment with every cut open does not come off.
+//
+// §5: "first, our wearability test verifies that the initial set of cuts
+// make the garment wearable". When it does not, the proxy is cut again with
+// another seed (recut_seed), up to a limit; the stage's result then carries
+// the new cut, and everything made from the old one (a stitch mesh, a
+// schedule) must be made again.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "planner/cut/cut_stage.hpp"
+#include "planner/wearability/wearability.hpp"
+#include "simulators/cloth/sdf.hpp"
+
+namespace planner {
+
+struct WearabilityStageParams {
+  WearabilityParams test;  // K trials per test, the cloth, group testing, seed, threads
+  int runs = 1;            // R eliminations with different arc orders (Fig. 18)
+  int recut_limit = 3;     // re-cuts tried after the cut given fails (§5); 0 = never
+  // A garment with fewer vertices is subdivided until it has this many, so
+  // it can bend around the wearer (refined_for_cloth; 0 = never).
+  int cloth_vertices = 500;
+  int sdf_resolution = cloth::SdfParams{}.resolution;  // cells along the wearer's longest side
+};
+
+// One cut tried: the one given (attempt 0) or a re-cut.
+struct CutAttempt {
+  int attempt = 0;
+  std::optional<std::uint64_t> cut_seed;  // unknown for a garment made by hand
+  int arcs = 0;
+  bool wearable = false;             // the garment with every cut open came off
+  std::vector<TrialOutcome> trials;  // of that initial test (run 0)
+  std::string failure;               // why this attempt could not be made (the re-cut failed)
+};
+
+struct Wearability {
+  WearabilityStageParams params;
+  std::optional<Cut> recut;          // the cut the labels belong to, when not the one given
+  std::uint64_t cut_id = 0;          // the id of the cut given (Cut::id)
+  CoverMesh cover;                   // the garment of the labelled cut, refined for the cloth
+  LacingStudy study;                 // of that cut
+  std::vector<CutAttempt> attempts;  // every cut tried, in order
+  double seconds = 0;
+
+  bool wearable() const { return chosen_run(study) >= 0; }
+  // The seed of the cut the labels belong to (unknown for a garment made by hand).
+  std::optional<std::uint64_t> cut_seed() const;
+};
+
+struct WearabilityCallbacks {
+  ProgressCallback progress;                         // arcs tested, per run
+  std::function<void(const CutAttempt&)> attempted;  // after each cut tried
+  TestRecord* record = nullptr;                      // tests kept, so a run cut short resumes
+};
+
+// What wearability.json holds, as later stages read it.
+struct WearabilityRecord {
+  std::uint64_t cut_id = 0;  // the cut its labels belong to
+  bool wearable = false;
+  std::vector<Label> labels;  // per arc of the cut, in cut.json's order
+  nlohmann::json file;        // the whole file, for the folder's summary
+};
+
+// The cut seed of re-cut `attempt` (1, 2, ...): derived from the
+// wearability seed, so a run is repeatable, and different for every attempt.
+std::uint64_t recut_seed(std::uint64_t wearability_seed, int attempt);
+
+// The garment of a cut as the wearability test takes it: the disc with the
+// vertices along its cuts welded, its cut-arcs, subdivided until it has at
+// least `min_vertices` vertices (refined_for_cloth).
+CoverMesh cover_of(const Cut& cut, int min_vertices);
+
+// A garment made by hand has no proxy to cut again: the wearability test of
+// its arcs as given (§5), every attempt after the first reported as not
+// possible.
+Wearability label_garment(const CoverMesh& garment, const cloth::SignedDistanceField& wearer,
+                          const WearabilityStageParams& params,
+                          const WearabilityCallbacks& callbacks = {});
+
+// The wearer's signed distance field at the stage's resolution.
+cloth::SignedDistanceField wearer_field(const PolygonMesh& wearer,
+                                        const WearabilityStageParams& params);
+
+// What decides a test besides the garment, the configuration and the seed
+// (the keys of a TestJournal): the program itself (a changed simulation must
+// not reuse old results), the wearer and the options the simulation reads.
+std::uint64_t journal_context(const PolygonMesh& wearer, const WearabilityStageParams& params);
+
+// "wearability: N arcs, S sew, L lace; ..." as the verb prints it.
+std::string describe(const Wearability& result);
+// The W020 message when no cut came off the wearer with every cut open.
+std::string not_wearable_message(const Wearability& result);
+
+// The strip-off of the final configuration as OBJ frames (frame-NNNNN.obj,
+// every `every` steps) in `dir`. Returns "" or the failure; `written` and
+// `off` tell how many frames and whether the garment came off.
+std::string write_strip_off_frames(const Wearability& result,
+                                   const cloth::SignedDistanceField& wearer, const std::string& dir,
+                                   int every, int* written, bool* off);
+
+}  // namespace planner
