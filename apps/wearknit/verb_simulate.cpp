@@ -10,53 +10,18 @@
 #include <vector>
 
 #include "apps/wearknit/cli.hpp"
-#include "backends/dat/passes.hpp"
+#include "backends/dat/pass_preview.hpp"
 #include "knitout/output_file.hpp"
 #include "knitout/parser.hpp"
 #include "simulators/bed/bed_view.hpp"
 #include "simulators/bed/knit_graph.hpp"
 #include "simulators/bed/machine.hpp"
+#include "simulators/bed/observer_pair.hpp"
 #include "simulators/bed/profile.hpp"
 
 namespace wearknit::cli {
 
 namespace po = boost::program_options;
-
-namespace {
-
-// Passes each event to two observers.
-class Tee : public bed::Observer {
- public:
-  Tee(bed::Observer* a, bed::Observer* b) : a_(a), b_(b) {}
-  void loop_made(const bed::LoopEvent& e) override {
-    if (a_) a_->loop_made(e);
-    if (b_) b_->loop_made(e);
-  }
-  void loops_moved(knitout::Needle from, knitout::Needle to, int count,
-                   std::uint32_t line) override {
-    if (a_) a_->loops_moved(from, to, count, line);
-    if (b_) b_->loops_moved(from, to, count, line);
-  }
-  void loops_dropped(knitout::Needle needle, std::span<const bed::LiveLoop> loops,
-                     std::uint32_t line) override {
-    if (a_) a_->loops_dropped(needle, loops, line);
-    if (b_) b_->loops_dropped(needle, loops, line);
-  }
-  void racked(double racking, std::uint32_t line) override {
-    if (a_) a_->racked(racking, line);
-    if (b_) b_->racked(racking, line);
-  }
-  void sweep_ended(const bed::Machine& machine, std::uint32_t line) override {
-    if (a_) a_->sweep_ended(machine, line);
-    if (b_) b_->sweep_ended(machine, line);
-  }
-
- private:
-  bed::Observer* a_;
-  bed::Observer* b_;
-};
-
-}  // namespace
 
 int run_simulate(const std::vector<std::string>& args, Context& context) {
   std::string input;
@@ -118,11 +83,11 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
   knitout::DiagnosticSink sink;
   bed::BedView bed_view;
   bed::KnitGraph knit_graph;
-  Tee tee(bed_view_path.empty() ? nullptr : &bed_view,
-          knit_graph_path.empty() ? nullptr : &knit_graph);
+  bed::ObserverPair observers(bed_view_path.empty() ? nullptr : &bed_view,
+                              knit_graph_path.empty() ? nullptr : &knit_graph);
   bed::MachineOptions machine_options;
   machine_options.max_repeats = max_repeats;
-  if (!bed_view_path.empty() || !knit_graph_path.empty()) machine_options.observer = &tee;
+  if (!bed_view_path.empty() || !knit_graph_path.empty()) machine_options.observer = &observers;
 
   knitout::Reader reader(*in, source, sink);
   std::optional<std::size_t> header_carriers;
@@ -131,40 +96,24 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
   }
   bed::Machine machine(*profile, sink, source, reader.carriers(), header_carriers, machine_options);
   machine.check_headers(reader.headers());
-  // The carriage passes the DAT backend forms, for machines it writes
-  // (issue: DAT passes in the statistics). Its diagnostics stay apart: the
-  // VM's verdict is this verb's verdict; a program the DAT backend refuses
-  // just has no passes to report.
-  const dat::Profile* dat_profile = dat::find_profile(profile->name);
-  knitout::DiagnosticSink dat_sink;
-  std::optional<dat::PassBuilder> pass_builder;
-  if (stats_wanted && dat_profile != nullptr) {
-    pass_builder.emplace(source, dat_sink, *dat_profile);
-    pass_builder->begin(reader.has_magic(), reader.headers());
+  // The carriage passes the DAT backend forms, beside the VM's statistics;
+  // the VM's verdict is this verb's verdict.
+  std::optional<dat::PassPreview> passes;
+  if (stats_wanted) {
+    passes.emplace(source, profile->name);
+    passes->begin(reader.has_magic(), reader.headers());
   }
   knitout::Instruction instruction;
   while (reader.next(instruction)) {
     machine.step(instruction);
-    if (pass_builder && !pass_builder->failed()) {
-      pass_builder->add(instruction, reader.carriers(), reader.text());
-    }
+    if (passes) passes->add(instruction, reader.carriers(), reader.text());
   }
   const auto last_line = static_cast<std::uint32_t>(reader.lines_read());
   machine.finish(last_line);
   bed::Stats stats = machine.stats();
   std::vector<dat::CarriagePass> carriage_passes;
-  std::string no_passes_reason =
-      dat_profile == nullptr ? "the DAT backend does not write for " + profile->name : "";
-  if (pass_builder) {
-    pass_builder->finish(last_line);
-    if (!pass_builder->failed()) {
-      carriage_passes = dat::summarize(pass_builder->passes());
-      stats.dat_passes = carriage_passes.size();
-    } else if (!dat_sink.diagnostics().empty()) {
-      no_passes_reason =
-          "the DAT backend refuses the program: " + knitout::format(dat_sink.sorted().front());
-    }
-  }
+  if (passes) carriage_passes = passes->finish(last_line);
+  stats.dat_passes = carriage_passes.size();
   stats.errors = sink.error_count();
   stats.warnings = sink.warning_count();
 
@@ -188,8 +137,8 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
       if (stats.dat_passes) {
         context.out << "  ";
         dat::write_carriage_passes_text(context.out, carriage_passes, values.count("passes") != 0);
-      } else if (!no_passes_reason.empty()) {
-        context.out << "  carriage passes: none formed (" << no_passes_reason << ")\n";
+      } else if (!passes->why_none().empty()) {
+        context.out << "  carriage passes: none formed (" << passes->why_none() << ")\n";
       }
     }
   }

@@ -7,142 +7,13 @@
 #include <vector>
 
 #include "apps/wearknit/cli.hpp"
+#include "knitout/diagnostic_reports.hpp"
 #include "simulators/bed/profile.hpp"
 #include "simulators/bed/validate.hpp"
 
 namespace wearknit::cli {
 
 namespace po = boost::program_options;
-
-namespace {
-
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        // Control characters other than tab and newline are not allowed in XML 1.0.
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') {
-          out += '?';
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out;
-}
-
-// GitHub workflow commands: data escapes %, CR, LF; properties also : and ,.
-std::string github_escape(std::string_view text, bool property) {
-  std::string out;
-  for (char c : text) {
-    if (c == '%') {
-      out += "%25";
-    } else if (c == '\r') {
-      out += "%0D";
-    } else if (c == '\n') {
-      out += "%0A";
-    } else if (property && c == ':') {
-      out += "%3A";
-    } else if (property && c == ',') {
-      out += "%2C";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
-struct FileResult {
-  std::string path;
-  std::vector<knitout::Diagnostic> diagnostics;
-  std::size_t errors = 0;
-  std::size_t warnings = 0;
-  std::uint64_t instructions = 0;
-};
-
-bool fails(const FileResult& r, bool werror) {
-  return r.errors > 0 || (werror && r.warnings > 0);
-}
-
-void print_github(std::ostream& out, const std::vector<FileResult>& results, bool werror) {
-  for (const FileResult& r : results) {
-    for (const knitout::Diagnostic& d : r.diagnostics) {
-      const bool error = d.severity == knitout::Severity::Error || werror;
-      out << (error ? "::error" : "::warning") << " file=" << github_escape(d.source, true);
-      if (d.line > 0) out << ",line=" << d.line;
-      if (d.column > 0) out << ",col=" << d.column;
-      out << "::" << github_escape("[" + d.code + "] " + d.message, false) << "\n";
-    }
-  }
-}
-
-void print_junit(std::ostream& out, const std::vector<FileResult>& results, bool werror,
-                 const std::string& machine) {
-  std::size_t tests = 0;
-  std::size_t failures = 0;
-  for (const FileResult& r : results) {
-    tests += 1 + r.diagnostics.size();
-    for (const knitout::Diagnostic& d : r.diagnostics) {
-      failures += d.severity == knitout::Severity::Error || werror ? 1 : 0;
-    }
-    failures += fails(r, werror) ? 1 : 0;
-  }
-  out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      << "<testsuites name=\"wearknit validate\" tests=\"" << tests << "\" failures=\"" << failures
-      << "\">\n";
-  for (const FileResult& r : results) {
-    std::size_t suite_failures = fails(r, werror) ? 1 : 0;
-    for (const knitout::Diagnostic& d : r.diagnostics) {
-      suite_failures += d.severity == knitout::Severity::Error || werror ? 1 : 0;
-    }
-    out << "  <testsuite name=\"" << xml_escape(r.path) << "\" tests=\"" << 1 + r.diagnostics.size()
-        << "\" failures=\"" << suite_failures << "\">\n";
-    // One case for the file as a whole, then one per diagnostic carrying its
-    // file and line, so CI reports show each where it belongs.
-    out << "    <testcase classname=\"wearknit.validate\" name=\""
-        << xml_escape(r.path + " validates on " + machine) << "\" file=\"" << xml_escape(r.path)
-        << "\">";
-    if (fails(r, werror)) {
-      out << "\n      <failure message=\"" << r.errors << " errors, " << r.warnings
-          << " warnings\" type=\"invalid\"/>\n    ";
-    }
-    out << "</testcase>\n";
-    for (const knitout::Diagnostic& d : r.diagnostics) {
-      const bool error = d.severity == knitout::Severity::Error || werror;
-      out << "    <testcase classname=\"wearknit.validate." << xml_escape(d.code) << "\" name=\""
-          << xml_escape(knitout::format(d)) << "\" file=\"" << xml_escape(d.source) << "\" line=\""
-          << d.line << "\">\n";
-      if (error) {
-        out << "      <failure message=\"" << xml_escape("[" + d.code + "] " + d.message)
-            << "\" type=\"" << knitout::to_string(d.severity) << "\">"
-            << xml_escape(knitout::format(d)) << "</failure>\n";
-      } else {
-        out << "      <system-out>" << xml_escape(knitout::format(d)) << "</system-out>\n";
-      }
-      out << "    </testcase>\n";
-    }
-    out << "  </testsuite>\n";
-  }
-  out << "</testsuites>\n";
-}
-
-}  // namespace
 
 int run_validate(const std::vector<std::string>& args, Context& context) {
   std::vector<std::string> inputs;
@@ -181,14 +52,14 @@ int run_validate(const std::vector<std::string>& args, Context& context) {
   }
   const bool werror = values.count("werror") != 0;
 
-  std::vector<FileResult> results;
+  std::vector<knitout::FileDiagnostics> results;
   bool io_error = false;
   for (const std::string& input : inputs) {
     knitout::DiagnosticSink sink;
     bed::MachineOptions machine_options;
     machine_options.max_repeats = max_repeats;
     bed::Stats stats;
-    FileResult result;
+    knitout::FileDiagnostics result;
     result.path = input == "-" ? "<stdin>" : input;
     if (input == "-") {
       stats = bed::validate_stream(std::cin, result.path, *profile, sink, machine_options);
@@ -210,15 +81,15 @@ int run_validate(const std::vector<std::string>& args, Context& context) {
 
   bool any_failure = false;
   std::vector<knitout::Diagnostic> all;
-  for (const FileResult& r : results) {
-    any_failure |= fails(r, werror);
+  for (const knitout::FileDiagnostics& r : results) {
+    any_failure |= r.fails(werror);
     all.insert(all.end(), r.diagnostics.begin(), r.diagnostics.end());
   }
   switch (*format) {
     case DiagnosticFormat::Text:
       knitout::print_text(context.err, all);
-      for (const FileResult& r : results) {
-        context.out << r.path << ": " << (fails(r, werror) ? "INVALID" : "valid") << " on "
+      for (const knitout::FileDiagnostics& r : results) {
+        context.out << r.path << ": " << (r.fails(werror) ? "INVALID" : "valid") << " on "
                     << profile->name << " (" << r.instructions << " instructions, " << r.errors
                     << " errors, " << r.warnings << " warnings)\n";
       }
@@ -227,10 +98,10 @@ int run_validate(const std::vector<std::string>& args, Context& context) {
       knitout::print_json(context.out, all);
       break;
     case DiagnosticFormat::Junit:
-      print_junit(context.out, results, werror, profile->name);
+      knitout::print_junit(context.out, results, werror, profile->name);
       break;
     case DiagnosticFormat::Github:
-      print_github(context.out, results, werror);
+      knitout::print_github(context.out, results, werror);
       break;
   }
   if (io_error) return kExitUsage;
