@@ -7,6 +7,7 @@
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apps/wearknit/cli.hpp"
@@ -112,8 +113,12 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
   machine.finish(last_line);
   bed::Stats stats = machine.stats();
   std::vector<dat::CarriagePass> carriage_passes;
-  if (passes) carriage_passes = passes->finish(last_line);
-  stats.dat_passes = carriage_passes.size();
+  if (passes) {
+    if (auto formed = passes->finish(last_line)) {
+      carriage_passes = std::move(*formed);
+      stats.dat_passes = carriage_passes.size();
+    }
+  }
   stats.errors = sink.error_count();
   stats.warnings = sink.warning_count();
 

@@ -23,13 +23,13 @@ void PassPreview::add(const knitout::Instruction& instruction,
   if (builder_ && !builder_->failed()) builder_->add(instruction, carriers, text);
 }
 
-std::vector<CarriagePass> PassPreview::finish(std::uint32_t last_line) {
-  if (!builder_) return {};
+std::optional<std::vector<CarriagePass>> PassPreview::finish(std::uint32_t last_line) {
+  if (!builder_) return std::nullopt;
   builder_->finish(last_line);
   if (!builder_->failed()) return summarize(builder_->passes());
   if (!sink_.diagnostics().empty())
     why_none_ = "the DAT backend refuses the program: " + knitout::format(sink_.sorted().front());
-  return {};
+  return std::nullopt;
 }
 
 }  // namespace dat

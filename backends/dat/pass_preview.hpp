@@ -27,8 +27,9 @@ class PassPreview {
   void begin(bool has_magic, const std::vector<knitout::Header>& headers);
   void add(const knitout::Instruction& instruction, const knitout::CarrierTable& carriers,
            std::string_view text);
-  // The passes of the whole program; empty when the backend refuses it.
-  std::vector<CarriagePass> finish(std::uint32_t last_line);
+  // The passes of the whole program; nullopt when the backend refuses it
+  // (a program it accepts may still form no pass).
+  std::optional<std::vector<CarriagePass>> finish(std::uint32_t last_line);
   // Why there are no passes ("" when there are, or when the backend gave no
   // reason).
   const std::string& why_none() const { return why_none_; }
