@@ -12,6 +12,7 @@
 
 #include "planner/common/index.hpp"
 #include "planner/common/union_find.hpp"
+#include "planner/mesh/soup.hpp"
 
 namespace planner {
 
@@ -23,8 +24,7 @@ namespace {
 constexpr std::array<std::array<int, 2>, 4> kStep = {{{0, -1}, {1, 0}, {0, 1}, {-1, 0}}};
 
 std::uint64_t cell_key(const std::array<int, 2>& uv) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(uv[0])) << 32) |
-         static_cast<std::uint32_t>(uv[1]);
+  return pair_key(uv[0], uv[1]);
 }
 
 bool is_vanishing(const HalfedgeMesh& q, const FieldLabels& labels, int h) {
@@ -535,13 +535,13 @@ std::vector<std::string> verify_cut(const CutMesh& cut) {
   std::map<std::pair<int, int>, int> edge_of;
   for (int e = 0; e < q.num_edges(); ++e) {
     const int h = q.edge_halfedge(e);
-    edge_of[{std::min(q.from(h), q.to(h)), std::max(q.from(h), q.to(h))}] = e;
+    edge_of[undirected_edge(q.from(h), q.to(h))] = e;
   }
   for (const CutArc& arc : cut.arcs) {
     for (std::size_t i = 0; i + 1 < arc.vertices.size(); ++i) {
       const int a = arc.vertices[i];
       const int b = arc.vertices[i + 1];
-      auto it = edge_of.find({std::min(a, b), std::max(a, b)});
+      auto it = edge_of.find(undirected_edge(a, b));
       if (it == edge_of.end()) {
         problems.push_back("arc step " + std::to_string(a) + "-" + std::to_string(b) +
                            " is not an edge");

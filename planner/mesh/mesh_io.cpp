@@ -13,7 +13,8 @@
 #include <ostream>
 #include <unordered_map>
 
-#include "planner/common/union_find.hpp"
+#include "planner/common/index.hpp"
+#include "planner/mesh/soup.hpp"
 
 namespace planner {
 
@@ -118,11 +119,6 @@ std::string lower(std::string_view text) {
 
 bool supported_extension(const std::string& ext) {
   return ext == "obj" || ext == "off" || ext == "ply" || ext == "stl";
-}
-
-std::uint64_t pair_key(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
 }
 
 // Caps the messages of one kind at 10 and then says how many were left out.
@@ -273,12 +269,7 @@ bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::Dia
         usable[static_cast<std::size_t>(f)] = false;
         continue;
       }
-      Vec3 normal = Vec3::Zero();
-      for (std::size_t i = 0; i < face.size(); ++i) {
-        normal += mesh.positions[static_cast<std::size_t>(face[i])].cross(
-            mesh.positions[static_cast<std::size_t>(face[(i + 1) % face.size()])]);
-      }
-      if (!(0.5 * normal.norm() > area_epsilon)) {
+      if (!(vector_area(mesh, face).norm() > area_epsilon)) {
         degenerate.report(fname(f) + " has zero area (its corners coincide or lie on a line)");
       }
     }
@@ -294,7 +285,8 @@ bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::Dia
       const int a = face[i];
       const int b = face[(i + 1) % face.size()];
       directed[pair_key(a, b)].push_back(f);
-      undirected[pair_key(std::min(a, b), std::max(a, b))].push_back(f);
+      const std::pair<int, int> edge = undirected_edge(a, b);
+      undirected[pair_key(edge.first, edge.second)].push_back(f);
     }
   }
   {
@@ -336,27 +328,14 @@ bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::Dia
   {
     // A vertex is manifold when its corners form one fan: corners that share
     // an edge out of the vertex are joined.
-    std::vector<int> corner_start(static_cast<std::size_t>(nf) + 1, 0);
+    const std::vector<int> corner_start = corner_starts(mesh);
+    UnionFind corners = corner_fans(mesh, corner_start, usable);
+    std::vector<int> corner_vertex(at(corner_start.back()), -1);
     for (int f = 0; f < nf; ++f) {
-      corner_start[static_cast<std::size_t>(f) + 1] =
-          corner_start[static_cast<std::size_t>(f)] +
-          static_cast<int>(mesh.faces[static_cast<std::size_t>(f)].size());
-    }
-    UnionFind corners(static_cast<std::size_t>(corner_start.back()));
-    std::unordered_map<std::uint64_t, int> first_corner;
-    std::vector<int> corner_vertex(static_cast<std::size_t>(corner_start.back()), -1);
-    for (int f = 0; f < nf; ++f) {
-      if (!usable[static_cast<std::size_t>(f)]) continue;
-      const auto& face = mesh.faces[static_cast<std::size_t>(f)];
-      const std::size_t n = face.size();
-      for (std::size_t i = 0; i < n; ++i) {
-        const int c = corner_start[static_cast<std::size_t>(f)] + static_cast<int>(i);
-        const int v = face[i];
-        corner_vertex[static_cast<std::size_t>(c)] = v;
-        for (const int w : {face[(i + 1) % n], face[(i + n - 1) % n]}) {
-          auto [it, inserted] = first_corner.emplace(pair_key(v, w), c);
-          if (!inserted) corners.unite(c, it->second);
-        }
+      if (!usable[at(f)]) continue;
+      const auto& face = mesh.faces[at(f)];
+      for (std::size_t i = 0; i < face.size(); ++i) {
+        corner_vertex[at(corner_start[at(f)] + static_cast<int>(i))] = face[i];
       }
     }
     std::vector<int> fan_root(static_cast<std::size_t>(nv), -1);
@@ -395,12 +374,7 @@ bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::Dia
     }
   }
   {
-    UnionFind vertices(static_cast<std::size_t>(nv));
-    for (int f = 0; f < nf; ++f) {
-      if (!usable[static_cast<std::size_t>(f)]) continue;
-      const auto& face = mesh.faces[static_cast<std::size_t>(f)];
-      for (std::size_t i = 1; i < face.size(); ++i) vertices.unite(face[0], face[i]);
-    }
+    UnionFind vertices = vertex_components(mesh, usable);
     std::map<int, std::pair<int, int>> components;  // root -> (first face, face count)
     for (int f = 0; f < nf; ++f) {
       if (!usable[static_cast<std::size_t>(f)]) continue;

@@ -8,8 +8,10 @@
 #include <set>
 #include <stdexcept>
 
+#include "planner/common/index.hpp"
 #include "planner/mesh/mesh.hpp"
 #include "planner/mesh/mesh_io.hpp"
+#include "planner/mesh/soup.hpp"
 #include "planner/proxy/remesh.hpp"
 
 namespace planner {
@@ -18,20 +20,9 @@ namespace {
 
 double corner_angle_at(const PolygonMesh& mesh, const std::vector<int>& face, std::size_t i) {
   const std::size_t n = face.size();
-  const Vec3& p = mesh.positions[static_cast<std::size_t>(face[i])];
-  const Vec3 a = mesh.positions[static_cast<std::size_t>(face[(i + 1) % n])] - p;
-  const Vec3 b = mesh.positions[static_cast<std::size_t>(face[(i + n - 1) % n])] - p;
-  const double na = a.norm();
-  const double nb = b.norm();
-  if (na <= 0.0 || nb <= 0.0) return 0.0;
-  return std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0));
-}
-
-double angle_between(const Vec3& a, const Vec3& b) {
-  const double na = a.norm();
-  const double nb = b.norm();
-  if (na <= 0.0 || nb <= 0.0) return 0.0;
-  return std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0));
+  const Vec3& p = mesh.positions[at(face[i])];
+  return angle_between(mesh.positions[at(face[(i + 1) % n])] - p,
+                       mesh.positions[at(face[(i + n - 1) % n])] - p);
 }
 
 std::vector<int> rotate_to(const std::vector<int>& face, std::size_t start) {
@@ -130,14 +121,7 @@ bool is_valid_proxy(const PolygonMesh& mesh) {
 
 double total_area(const PolygonMesh& mesh) {
   double area = 0.0;
-  for (const auto& face : mesh.faces) {
-    Vec3 n = Vec3::Zero();
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      n += mesh.positions[static_cast<std::size_t>(face[i])].cross(
-          mesh.positions[static_cast<std::size_t>(face[(i + 1) % face.size()])]);
-    }
-    area += 0.5 * n.norm();
-  }
+  for (const auto& face : mesh.faces) area += vector_area(mesh, face).norm();
   return area;
 }
 
@@ -151,10 +135,9 @@ int split_polygons(PolygonMesh& mesh) {
   // A diagonal must not repeat an edge the mesh already has (it would be
   // shared by three faces then): such corners are passed over.
   std::set<std::pair<int, int>> edges;
-  auto edge_key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
   for (const auto& face : mesh.faces) {
     for (std::size_t i = 0; i < face.size(); ++i)
-      edges.insert(edge_key(face[i], face[(i + 1) % face.size()]));
+      edges.insert(undirected_edge(face[i], face[(i + 1) % face.size()]));
   }
   int split = 0;
   std::vector<std::vector<int>> extra;
@@ -178,24 +161,24 @@ int split_polygons(PolygonMesh& mesh) {
           const Vec3 d3 = mesh.positions[static_cast<std::size_t>(f[3])] - p;
           const double imbalance2 = std::abs(angle_between(next, d2) - angle_between(d2, prev));
           const double imbalance3 = std::abs(angle_between(next, d3) - angle_between(d3, prev));
-          const bool free2 = !edges.count(edge_key(f[0], f[2]));
-          const bool free3 = !edges.count(edge_key(f[0], f[3]));
+          const bool free2 = !edges.count(undirected_edge(f[0], f[2]));
+          const bool free3 = !edges.count(undirected_edge(f[0], f[3]));
           if (free2 && (imbalance2 <= imbalance3 || !free3)) {
             extra.push_back({f[0], f[1], f[2]});
             face = {f[0], f[2], f[3], f[4]};
-            edges.insert(edge_key(f[0], f[2]));
+            edges.insert(undirected_edge(f[0], f[2]));
           } else if (free3) {
             extra.push_back({f[0], f[3], f[4]});
             face = {f[0], f[1], f[2], f[3]};
-            edges.insert(edge_key(f[0], f[3]));
+            edges.insert(undirected_edge(f[0], f[3]));
           } else {
             continue;
           }
         } else {
           // Cut a quad off the largest corner; a hexagon becomes two quads.
-          if (edges.count(edge_key(f[0], f[3]))) continue;
+          if (edges.count(undirected_edge(f[0], f[3]))) continue;
           extra.push_back({f[0], f[1], f[2], f[3]});
-          edges.insert(edge_key(f[0], f[3]));
+          edges.insert(undirected_edge(f[0], f[3]));
           std::vector<int> rest = {f[0]};
           rest.insert(rest.end(), f.begin() + 3, f.end());
           face = std::move(rest);
@@ -214,17 +197,7 @@ ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params) {
   ProxyResult result;
   if (is_quad_dominant(input)) {
     result.mesh = input;
-    double total = 0.0;
-    std::size_t count = 0;
-    for (const auto& face : input.faces) {
-      for (std::size_t i = 0; i < face.size(); ++i) {
-        total += (input.positions[static_cast<std::size_t>(face[(i + 1) % face.size()])] -
-                  input.positions[static_cast<std::size_t>(face[i])])
-                     .norm();
-        ++count;
-      }
-    }
-    result.edge_mm = count > 0 ? total / static_cast<double>(count) : 0.0;
+    result.edge_mm = mean_edge_length(input);
   } else {
     result.remeshed = true;
     const double area = total_area(input);

@@ -20,27 +20,11 @@
 #include "planner/common/index.hpp"
 #include "planner/common/union_find.hpp"
 #include "planner/mesh/mesh_io.hpp"
+#include "planner/mesh/soup.hpp"
 
 namespace planner {
 
 namespace {
-
-// Vertices no face uses are dropped; the others are numbered in the order
-// the faces first use them.
-void drop_unused_vertices(PolygonMesh& mesh) {
-  std::vector<int> index(mesh.positions.size(), -1);
-  std::vector<Vec3> kept;
-  for (auto& face : mesh.faces) {
-    for (int& v : face) {
-      if (index[at(v)] < 0) {
-        index[at(v)] = static_cast<int>(kept.size());
-        kept.push_back(mesh.positions[at(v)]);
-      }
-      v = index[at(v)];
-    }
-  }
-  mesh.positions = std::move(kept);
-}
 
 struct TriTraits : public OpenMesh::DefaultTraits {
   using Point = OpenMesh::Vec3d;
@@ -156,26 +140,13 @@ PolygonMesh split_long_edges(const PolygonMesh& input, double max_length) {
   return from_trimesh(tri);
 }
 
-double mean_edge_length(const PolygonMesh& mesh) {
-  double total = 0.0;
-  std::size_t count = 0;
-  for (const auto& face : mesh.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      total +=
-          (mesh.positions[at(face[(i + 1) % face.size()])] - mesh.positions[at(face[i])]).norm();
-      ++count;
-    }
-  }
-  return count == 0 ? 0.0 : total / static_cast<double>(count);
-}
-
 // 1-to-4 midpoint subdivision of a triangle mesh (positions unchanged).
 PolygonMesh subdivide(const PolygonMesh& mesh) {
   PolygonMesh out;
   out.positions = mesh.positions;
   std::map<std::pair<int, int>, int> midpoint;
   auto mid = [&](int a, int b) {
-    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+    const auto key = undirected_edge(a, b);
     auto it = midpoint.find(key);
     if (it != midpoint.end()) return it->second;
     out.positions.push_back(0.5 * (mesh.positions[at(a)] + mesh.positions[at(b)]));
@@ -483,23 +454,8 @@ std::pair<Vec3, Vec3> compatible_positions(const Vec3& p0, const Vec3& n0, const
 // the sheets no longer touch: later stages that weld the cut mesh's two
 // sides by position (the wearability stage) must not merge them again.
 void split_pinched_vertices(PolygonMesh& mesh) {
-  std::vector<int> start(mesh.faces.size() + 1, 0);
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    start[f + 1] = start[f] + static_cast<int>(mesh.faces[f].size());
-  }
-  UnionFind corners(at(start.back()));
-  std::map<std::pair<int, int>, int> first;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const auto& face = mesh.faces[f];
-    const std::size_t n = face.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const int c = start[f] + static_cast<int>(i);
-      for (const int w : {face[(i + 1) % n], face[(i + n - 1) % n]}) {
-        auto [it, inserted] = first.emplace(std::make_pair(face[i], w), c);
-        if (!inserted) corners.unite(c, it->second);
-      }
-    }
-  }
+  const std::vector<int> start = corner_starts(mesh);
+  UnionFind corners = corner_fans(mesh, start);
   std::vector<int> owner(mesh.positions.size(), -1);  // fan root that keeps the original vertex
   std::map<int, int> copy_of_root;
   std::vector<int> split;  // the vertices split and their copies
@@ -557,7 +513,7 @@ int collapse_folded_quads(PolygonMesh& mesh, double ratio) {
         ring[at(a)].push_back(b);
         ring[at(b)].push_back(a);
         faces_of[at(a)].push_back(static_cast<int>(f));
-        ++uses[{std::min(a, b), std::max(a, b)}];
+        ++uses[undirected_edge(a, b)];
       }
     }
     std::vector<bool> boundary(n, false);
@@ -622,10 +578,7 @@ int weld_folds(PolygonMesh& mesh, double ratio) {
 // Crumbs of a few faces left where the lattice folded are dropped; a
 // second big component is kept (and fails the topology check).
 void keep_largest_component(PolygonMesh& mesh) {
-  UnionFind vertices(mesh.positions.size());
-  for (const auto& face : mesh.faces) {
-    for (std::size_t i = 1; i < face.size(); ++i) vertices.unite(face[0], face[i]);
-  }
+  UnionFind vertices = vertex_components(mesh);
   std::map<int, std::size_t> size;
   for (const auto& face : mesh.faces) ++size[vertices.find(face[0])];
   if (size.size() <= 1) return;
