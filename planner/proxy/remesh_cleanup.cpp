@@ -36,10 +36,7 @@ int collapse_folded_quads(PolygonMesh& mesh, double ratio) {
     for (const auto& [edge, count] : uses) {
       if (count == 1) boundary[at(edge.first)] = boundary[at(edge.second)] = true;
     }
-    for (auto& list : ring) {
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
-    }
+    for (auto& list : ring) remesh_detail::sort_unique(list);
     for (std::size_t f = 0; f < mesh.faces.size() && !changed; ++f) {
       const auto& face = mesh.faces[f];
       if (face.size() != 4) continue;

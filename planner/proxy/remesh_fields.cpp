@@ -119,10 +119,7 @@ FieldGraph coarsen(FieldGraph& fine) {
       if (a != b) coarse.adjacent[at(a)].push_back(b);
     }
   }
-  for (auto& list : coarse.adjacent) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
+  for (auto& list : coarse.adjacent) sort_unique(list);
   return coarse;
 }
 
