@@ -22,6 +22,7 @@
 #include <utility>
 
 #include "planner/common/index.hpp"
+#include "planner/common/union_find.hpp"
 #include "simulators/cloth/sdf.hpp"
 
 namespace planner {
@@ -692,14 +693,6 @@ Pieces split_halfedges(const Pieces& in, std::vector<HalfedgeSplit> splits) {
   }
   link_twins(out);
   return out;
-}
-
-int find(std::vector<int>& parent, int x) {
-  while (parent[at(x)] != x) {
-    parent[at(x)] = parent[at(parent[at(x)])];
-    x = parent[at(x)];
-  }
-  return x;
 }
 
 // ---------------------------------------------------------------------------
@@ -2282,21 +2275,20 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   int bands = 1;
   Pieces pieces;
   std::map<int, std::vector<std::vector<int>>> loops;  // strip root -> boundary loops
-  std::vector<int> parent;
+  UnionFind strips_of(0);
   // Rows, pieces and strips from t. A strip with a hole (an interior
   // extremum of t) makes the row time be levelled and the rows be placed
   // again; a row time without one is used as fitted.
   auto find_strips = [&] {
     // Strips: pieces of one band joined across their shared sides.
-    const int num_pieces = static_cast<int>(pieces.band.size());
-    parent.assign(at(num_pieces), 0);
-    std::iota(parent.begin(), parent.end(), 0);
+    // Each strip's root is its lowest piece.
+    strips_of = UnionFind(pieces.band.size());
     for (std::size_t h = 0; h < pieces.from.size(); ++h) {
       const int tw = pieces.twin[h];
       if (tw < 0 || pieces.level[h] >= 0) continue;
-      const int a = find(parent, pieces.piece[h]);
-      const int b = find(parent, pieces.piece[at(tw)]);
-      if (a != b) parent[at(std::max(a, b))] = std::min(a, b);
+      const int a = strips_of.find(pieces.piece[h]);
+      const int b = strips_of.find(pieces.piece[at(tw)]);
+      if (a != b) strips_of.unite(std::max(a, b), std::min(a, b));
     }
     auto on_boundary = [&](int h) { return pieces.twin[at(h)] < 0 || pieces.level[at(h)] >= 0; };
     loops.clear();
@@ -2317,7 +2309,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
         h = c;
       } while (h != h0 && !visited[at(h)]);
       if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
-      loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
+      loops[strips_of.find(pieces.piece[at(h0)])].push_back(std::move(loop));
     }
   };
   auto make_strips = [&](const std::vector<bool>& candidates) {
@@ -2364,7 +2356,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     if (!roots.empty()) {
       std::vector<bool> candidates(disc.positions.size(), false);
       for (std::size_t p = 0; p < pieces.band.size(); ++p) {
-        if (roots.count(find(parent, static_cast<int>(p))) == 0) continue;
+        if (roots.count(strips_of.find(static_cast<int>(p))) == 0) continue;
         for (int v : tris[at(pieces.tri[p])].v) candidates[at(v)] = true;
       }
       make_strips(candidates);
