@@ -473,49 +473,41 @@ std::vector<int> pin_saddles(const LabelledDisc& disc, const std::vector<Triangl
 }
 
 // ---------------------------------------------------------------------------
-// Step 2: pieces of triangles between consecutive levels.
+// Step 2: the triangles cut along the row levels.
 
-struct Pieces {
-  std::vector<Vec3> position;    // piece vertices: input vertices, then level crossings
-  std::vector<int> start{0};     // piece p: half-edges start[p] .. start[p+1]-1
-  std::vector<int> band;         // per piece
-  std::vector<int> tri;          // per piece
-  std::vector<int> from;         // per half-edge
-  std::vector<int> level;        // per half-edge: level index of an isoline side, else -1
-  std::vector<int> source_face;  // per half-edge on the disc boundary: input face, else -1
+// Each face of `mesh` is a slice: the part of one triangle inside one band
+// (between consecutive levels). Its vertices are the disc's vertices, then
+// the points where level curves cross the triangles' sides. Slices of one
+// band that share a side (not a level curve) make up a strip.
+struct BandSlices {
+  HalfedgeMesh mesh;
+  std::vector<int> band;         // per slice
+  std::vector<int> tri;          // per slice: the triangle it is part of
+  std::vector<int> level;        // per half-edge: level index of a level-curve side, else -1
+  std::vector<int> source_face;  // per half-edge on the disc boundary: disc face, else -1
   std::vector<int> source_side;  // ... and its side
-  std::vector<int> twin;         // per half-edge, -1 if none
-  std::vector<int> piece;        // per half-edge
-  std::vector<bool> pinned;      // per input vertex: a saddle of t held on a level
+  std::vector<bool> pinned;      // per disc vertex: a saddle of t held on a level
 
-  int next(int h) const {
-    const int p = piece[at(h)];
-    return h + 1 < start[at(p) + 1] ? h + 1 : start[at(p)];
-  }
-  int to(int h) const { return from[at(next(h))]; }
+  int num_slices() const { return mesh.num_faces(); }
+  int num_halfedges() const { return mesh.num_halfedges(); }
+  const Vec3& position(int v) const { return mesh.position(v); }
+  int from(int h) const { return mesh.from(h); }
+  int to(int h) const { return mesh.to(h); }
+  int next(int h) const { return mesh.next(h); }
+  int twin(int h) const { return mesh.twin(h); }
+  int slice(int h) const { return mesh.face(h); }
+  double length(int h) const { return mesh.edge_length(h); }
   bool is_pinned(int v) const { return at(v) < pinned.size() && pinned[at(v)]; }
-  double length(int h) const { return (position[at(to(h))] - position[at(from[at(h)])]).norm(); }
 };
 
-void link_twins(Pieces& out) {
-  out.twin.assign(out.from.size(), -1);
-  std::unordered_map<std::uint64_t, int> half;
-  half.reserve(out.from.size());
-  for (int h = 0; h < static_cast<int>(out.from.size()); ++h)
-    half[key(out.from[at(h)], out.to(h))] = h;
-  for (int h = 0; h < static_cast<int>(out.from.size()); ++h) {
-    auto it = half.find(key(out.to(h), out.from[at(h)]));
-    if (it != half.end()) out.twin[at(h)] = it->second;
-  }
-}
-
 // `pin` holds, per input vertex, the level a saddle of t is held on (-1 for
-// none): such a vertex lies on its level, a corner of the pieces of both
+// none): such a vertex lies on its level, a corner of the slices of both
 // bands, and the level curves through it meet there.
-Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const Eigen::VectorXd& t,
-             double spacing, int bands, const std::vector<int>& pin) {
-  Pieces out;
-  out.position = disc.positions;
+BandSlices slice(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                 const Eigen::VectorXd& t, double spacing, int bands, const std::vector<int>& pin) {
+  BandSlices out;
+  PolygonMesh polygons;
+  polygons.positions = disc.positions;
   out.pinned.assign(disc.positions.size(), false);
   for (std::size_t v = 0; v < pin.size(); ++v) out.pinned[v] = pin[v] >= 0;
   auto pin_of = [&](int v) { return pin.empty() ? -1 : pin[at(v)]; };
@@ -553,8 +545,8 @@ Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const 
     auto [it, inserted] = crossings.emplace(std::make_tuple(lo, hi, level), 0);
     if (inserted) {
       const double s = (level - value[at(lo)]) / (value[at(hi)] - value[at(lo)]);
-      it->second = static_cast<int>(out.position.size());
-      out.position.push_back((1 - s) * disc.positions[at(lo)] + s * disc.positions[at(hi)]);
+      it->second = static_cast<int>(polygons.positions.size());
+      polygons.positions.push_back((1 - s) * disc.positions[at(lo)] + s * disc.positions[at(hi)]);
     }
     return it->second;
   };
@@ -593,14 +585,13 @@ Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const 
         for (int level : levels) corners.push_back({get_crossing(p, q, level), i, level, false});
       }
       if (corners.size() < 3) continue;
-      const int piece = static_cast<int>(out.band.size());
+      std::vector<int>& face = polygons.faces.emplace_back();
       out.band.push_back(b);
       out.tri.push_back(static_cast<int>(k));
       for (std::size_t c = 0; c < corners.size(); ++c) {
         const Corner& a = corners[c];
         const Corner& z = corners[(c + 1) % corners.size()];
-        out.from.push_back(a.vertex);
-        out.piece.push_back(piece);
+        face.push_back(a.vertex);
         int level = -1;
         int side = -1;  // triangle side the half-edge lies on
         const bool a_on = a.edge >= 0 || a.pinned;
@@ -635,10 +626,9 @@ Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const 
         out.source_face.push_back(source_face);
         out.source_side.push_back(source_side);
       }
-      out.start.push_back(static_cast<int>(out.from.size()));
     }
   }
-  link_twins(out);
+  out.mesh = HalfedgeMesh(std::move(polygons));
   return out;
 }
 
@@ -660,38 +650,37 @@ struct HalfedgeSplit {
   Vec3 point = Vec3::Zero();
 };
 
-// The pieces with points added on boundary half-edges (each split half-edge
+// The slices with points added on boundary half-edges (each split half-edge
 // becomes two with the same origin; boundary half-edges have no twin).
-Pieces split_halfedges(const Pieces& in, std::vector<HalfedgeSplit> splits) {
+BandSlices split_halfedges(const BandSlices& in, std::vector<HalfedgeSplit> splits) {
   std::sort(splits.begin(), splits.end(), [](const HalfedgeSplit& a, const HalfedgeSplit& b) {
     return std::tie(a.halfedge, a.s) < std::tie(b.halfedge, b.s);
   });
-  Pieces out;
-  out.position = in.position;
+  BandSlices out;
+  PolygonMesh polygons;
+  polygons.positions = in.mesh.polygons().positions;
   out.band = in.band;
   out.tri = in.tri;
   out.pinned = in.pinned;
-  out.start.assign(1, 0);
   std::size_t next_split = 0;
-  for (std::size_t p = 0; p + 1 < in.start.size(); ++p) {
-    for (int h = in.start[p]; h < in.start[p + 1]; ++h) {
+  for (int p = 0; p < in.num_slices(); ++p) {
+    std::vector<int>& face = polygons.faces.emplace_back();
+    for (int h = in.mesh.face_start(p); h < in.mesh.face_start(p) + in.mesh.degree(p); ++h) {
       auto push = [&](int from) {
-        out.from.push_back(from);
+        face.push_back(from);
         out.level.push_back(in.level[at(h)]);
         out.source_face.push_back(in.source_face[at(h)]);
         out.source_side.push_back(in.source_side[at(h)]);
-        out.piece.push_back(static_cast<int>(p));
       };
-      push(in.from[at(h)]);
+      push(in.from(h));
       while (next_split < splits.size() && splits[next_split].halfedge == h) {
-        out.position.push_back(splits[next_split].point);
-        push(static_cast<int>(out.position.size()) - 1);
+        polygons.positions.push_back(splits[next_split].point);
+        push(static_cast<int>(polygons.positions.size()) - 1);
         ++next_split;
       }
     }
-    out.start.push_back(static_cast<int>(out.from.size()));
   }
-  link_twins(out);
+  out.mesh = HalfedgeMesh(std::move(polygons));
   return out;
 }
 
@@ -772,11 +761,11 @@ void join_boundary_runs(Chain& chain) {
 struct Builder {
   const LabelledDisc& disc;
   const StitchMeshParams& params;
-  const Pieces& pieces;
+  const BandSlices& slices;
   StitchMesh mesh;
-  std::unordered_map<int, int> anchor;  // piece vertex -> stitch vertex
-  // Level curve (by any of its undirected piece edges) -> its stitch vertices
-  // in the order of the first strip that sampled it, and that order's first piece vertex.
+  std::unordered_map<int, int> anchor;  // slice vertex -> stitch vertex
+  // Level curve (by any of its undirected slice edges) -> its stitch vertices
+  // in the order of the first strip that sampled it, and that order's first slice vertex.
   std::unordered_map<std::uint64_t, int> curve_of_edge;
   std::vector<std::vector<int>> curve_samples;
   std::vector<int> curve_first;
@@ -786,24 +775,24 @@ struct Builder {
   std::unordered_set<std::uint64_t> shaped_below;
   // Course-out sides (as the row above walks them) -> the face below.
   std::unordered_map<std::uint64_t, std::size_t> face_below;
-  // Level curve (by any of its undirected piece edges) -> fewest segments.
+  // Level curve (by any of its undirected slice edges) -> fewest segments.
   std::unordered_map<std::uint64_t, int> min_segments;
   // Points to add on boundary half-edges, for row ends (end_rows_in_wale_sides).
   std::vector<HalfedgeSplit> tip_splits;
 
-  int stitch_vertex(int piece_vertex) {
-    auto [it, inserted] = anchor.emplace(piece_vertex, 0);
+  int stitch_vertex(int slice_vertex) {
+    auto [it, inserted] = anchor.emplace(slice_vertex, 0);
     if (inserted) {
       it->second = static_cast<int>(mesh.positions.size());
-      mesh.positions.push_back(pieces.position[at(piece_vertex)]);
+      mesh.positions.push_back(slices.position(slice_vertex));
     }
     return it->second;
   }
 
   std::int32_t arc_of(int h) const {
-    const int f = pieces.source_face[at(h)];
+    const int f = slices.source_face[at(h)];
     if (f < 0 || disc.arcs.empty()) return kNoArc;
-    return disc.arcs[at(f)][at(pieces.source_side[at(h)])];
+    return disc.arcs[at(f)][at(slices.source_side[at(h)])];
   }
 
   // A boundary run's length in straight steps of course_mm: a jagged cut
@@ -812,9 +801,9 @@ struct Builder {
   double straight_length(const Run& run) const {
     const std::vector<double> along = lengths_along(run.halfedges);
     const std::vector<double> walk = straight_walk(run.halfedges, along, params.course_mm);
-    const Vec3 last = walk.empty() ? pieces.position[at(pieces.from[at(run.halfedges.front())])]
+    const Vec3 last = walk.empty() ? slices.position(slices.from(run.halfedges.front()))
                                    : point_along(run.halfedges, along, walk.back());
-    const Vec3 end = pieces.position[at(pieces.to(run.halfedges.back()))];
+    const Vec3 end = slices.position(slices.to(run.halfedges.back()));
     return static_cast<double>(walk.size()) * params.course_mm + (end - last).norm();
   }
 
@@ -827,7 +816,7 @@ struct Builder {
   std::vector<double> lengths_along(const std::vector<int>& halfedges) const {
     std::vector<double> along{0};
     for (int h : halfedges) {
-      along.push_back(along.back() + pieces.length(h));
+      along.push_back(along.back() + slices.length(h));
     }
     return along;
   }
@@ -839,8 +828,8 @@ struct Builder {
     while (k + 1 < halfedges.size() && along[k + 1] < t) ++k;
     const double span = along[k + 1] - along[k];
     const double w = span > 0 ? std::clamp((t - along[k]) / span, 0.0, 1.0) : 0.0;
-    return (1 - w) * pieces.position[at(pieces.from[at(halfedges[k])])] +
-           w * pieces.position[at(pieces.to(halfedges[k]))];
+    return (1 - w) * slices.position(slices.from(halfedges[k])) +
+           w * slices.position(slices.to(halfedges[k]));
   }
 
   // Arc lengths of the points of a walk along a polyline that steps `step`
@@ -848,10 +837,10 @@ struct Builder {
   std::vector<double> straight_walk(const std::vector<int>& halfedges,
                                     const std::vector<double>& along, double step) const {
     std::vector<double> out;
-    Vec3 last = pieces.position[at(pieces.from[at(halfedges.front())])];
+    Vec3 last = slices.position(slices.from(halfedges.front()));
     for (std::size_t k = 0; k < halfedges.size(); ++k) {
-      const Vec3 a = pieces.position[at(pieces.from[at(halfedges[k])])];
-      const Vec3 e = pieces.position[at(pieces.to(halfedges[k]))] - a;
+      const Vec3 a = slices.position(slices.from(halfedges[k]));
+      const Vec3 e = slices.position(slices.to(halfedges[k])) - a;
       double from = 0;
       while (true) {
         // The farther point of this half-edge `step` from the last one.
@@ -879,8 +868,8 @@ struct Builder {
     std::vector<Vec3> point;
     std::vector<double> arc;
     for (std::size_t k = 0; k < halfedges.size(); ++k) {
-      const Vec3 a = pieces.position[at(pieces.from[at(halfedges[k])])];
-      const Vec3 b = pieces.position[at(pieces.to(halfedges[k]))];
+      const Vec3 a = slices.position(slices.from(halfedges[k]));
+      const Vec3 b = slices.position(slices.to(halfedges[k]));
       const int parts =
           std::max(1, static_cast<int>(std::ceil((along[k + 1] - along[k]) / spacing)));
       for (int i = 0; i < parts; ++i) {
@@ -889,7 +878,7 @@ struct Builder {
         arc.push_back(along[k] + w * (along[k + 1] - along[k]));
       }
     }
-    point.push_back(pieces.position[at(pieces.to(halfedges.back()))]);
+    point.push_back(slices.position(slices.to(halfedges.back())));
     arc.push_back(along.back());
     const std::size_t m = point.size();
     // A side spans at most this much of the run's length.
@@ -942,7 +931,7 @@ struct Builder {
       std::vector<double> sides = straight_sides(halfedges, along, n);
       if (!sides.empty()) at_length = std::move(sides);
     }
-    std::vector<int> out{stitch_vertex(pieces.from[at(halfedges.front())])};
+    std::vector<int> out{stitch_vertex(slices.from(halfedges.front()))};
     for (int i = 1; i <= n; ++i) {
       const double s = i < n ? at_length[at(i - 1)] : total;
       const double mid = 0.5 * ((i > 1 ? at_length[at(i - 2)] : 0.0) + s);
@@ -950,7 +939,7 @@ struct Builder {
       while (m + 1 < halfedges.size() && along[m + 1] < mid) ++m;
       if (arcs != nullptr) arcs->push_back(arc_of(halfedges[m]));
       if (i == n) {
-        out.push_back(stitch_vertex(pieces.to(halfedges.back())));
+        out.push_back(stitch_vertex(slices.to(halfedges.back())));
         break;
       }
       out.push_back(static_cast<int>(mesh.positions.size()));
@@ -960,8 +949,8 @@ struct Builder {
   }
 
   std::uint64_t undirected(int h) const {
-    const int a = pieces.from[at(h)];
-    const int b = pieces.to(h);
+    const int a = slices.from(h);
+    const int b = slices.to(h);
     return key(std::min(a, b), std::max(a, b));
   }
 
@@ -977,12 +966,12 @@ struct Builder {
     if (it == curve_of_edge.end()) {
       const int id = static_cast<int>(curve_samples.size());
       curve_samples.push_back(sample(run.halfedges, nullptr, n));
-      curve_first.push_back(pieces.from[at(run.halfedges.front())]);
+      curve_first.push_back(slices.from(run.halfedges.front()));
       for (int h : run.halfedges) curve_of_edge[undirected(h)] = id;
       return curve_samples.back();
     }
     std::vector<int> samples = curve_samples[at(it->second)];
-    if (curve_first[at(it->second)] != pieces.from[at(run.halfedges.front())]) {
+    if (curve_first[at(it->second)] != slices.from(run.halfedges.front())) {
       std::reverse(samples.begin(), samples.end());
     }
     return samples;
@@ -1134,41 +1123,40 @@ struct Builder {
                              const std::vector<Triangle>& tris) {
     std::vector<Run> runs;
     for (int h : loop) {
-      Run piece;
-      const double length = pieces.length(h);
-      const int level = pieces.level[at(h)];
+      Run part;
+      const double length = slices.length(h);
+      const int level = slices.level[at(h)];
       if (level >= 0) {
-        piece.level = true;
-        piece.side = level == band ? Side::Low : Side::High;
+        part.level = true;
+        part.side = level == band ? Side::Low : Side::High;
       } else {
         // §6.2: the side's direction against the row direction.
-        const Triangle& tri = tris[at(pieces.tri[at(pieces.piece[at(h)])])];
-        const Vec3 e = pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])];
+        const Triangle& tri = tris[at(slices.tri[at(slices.slice(h))])];
+        const Vec3 e = slices.position(slices.to(h)) - slices.position(slices.from(h));
         const Vec3 outward = e.cross(tri.normal);
         const double c = tri.grad.norm() > 0 && outward.norm() > 0
                              ? tri.grad.normalized().dot(outward.normalized())
                              : 0.0;
-        piece.side = c > params.side_cosine    ? Side::High
-                     : c < -params.side_cosine ? Side::Low
-                                               : Side::Wale;
+        part.side = c > params.side_cosine    ? Side::High
+                    : c < -params.side_cosine ? Side::Low
+                                              : Side::Wale;
       }
       // A level curve through a pinned saddle is two runs there, so the
       // saddle is a stitch vertex of both (it is where four runs meet).
-      const bool breaks = piece.level && pieces.is_pinned(pieces.from[at(h)]);
-      if (!runs.empty() && runs.back().level == piece.level && runs.back().side == piece.side &&
+      const bool breaks = part.level && slices.is_pinned(slices.from(h));
+      if (!runs.empty() && runs.back().level == part.level && runs.back().side == part.side &&
           !breaks) {
         runs.back().halfedges.push_back(h);
         runs.back().length += length;
       } else {
-        piece.halfedges.push_back(h);
-        piece.length = length;
-        runs.push_back(std::move(piece));
+        part.halfedges.push_back(h);
+        part.length = length;
+        runs.push_back(std::move(part));
       }
     }
     if (runs.size() > 1 && runs.front().level == runs.back().level &&
         runs.front().side == runs.back().side &&
-        !(runs.front().level &&
-          pieces.is_pinned(pieces.from[at(runs.front().halfedges.front())]))) {
+        !(runs.front().level && slices.is_pinned(slices.from(runs.front().halfedges.front())))) {
       runs.back().halfedges.insert(runs.back().halfedges.end(), runs.front().halfedges.begin(),
                                    runs.front().halfedges.end());
       runs.back().length += runs.front().length;
@@ -1280,7 +1268,7 @@ struct Builder {
   }
 
   // Splits run `r` after its first `count` half-edges.
-  static std::pair<Run, Run> split_run(const Run& r, std::size_t count, const Pieces& pieces) {
+  static std::pair<Run, Run> split_run(const Run& r, std::size_t count, const BandSlices& slices) {
     Run a;
     Run b;
     a.side = b.side = r.side;
@@ -1289,7 +1277,7 @@ struct Builder {
       const int h = r.halfedges[k];
       Run& into = k < count ? a : b;
       into.halfedges.push_back(h);
-      into.length += pieces.length(h);
+      into.length += slices.length(h);
     }
     return {a, b};
   }
@@ -1303,7 +1291,7 @@ struct Builder {
   // point (docs/stitch-mesh.md, step 4, "Row ends"). A wale side on the
   // boundary shorter than that (the boundary turns from along the wale to
   // oblique within the row) is lengthened the same way. The stretch ends at
-  // a piece vertex; where none lies at that distance, `tip_splits` receives
+  // a slice vertex; where none lies at that distance, `tip_splits` receives
   // the point to add (the caller adds them and makes the chains again).
   void end_rows_in_wale_sides(std::vector<Chain>& out) {
     if (!(params.tip_side_wales > 0) || out.size() < 2) return;
@@ -1319,8 +1307,8 @@ struct Builder {
       const std::size_t n = r.halfedges.size();
       for (std::size_t k = 0; k < n; ++k) {
         const int h = from_front ? r.halfedges[k] : r.halfedges[n - 1 - k];
-        const Vec3 near = pieces.position[at(from_front ? pieces.from[at(h)] : pieces.to(h))];
-        const Vec3 far = pieces.position[at(from_front ? pieces.to(h) : pieces.from[at(h)])];
+        const Vec3 near = slices.position(from_front ? slices.from(h) : slices.to(h));
+        const Vec3 far = slices.position(from_front ? slices.to(h) : slices.from(h));
         const double d_far = (far - origin).norm();
         if (d_far < length - tolerance) continue;
         if (std::abs(d_far - length) <= tolerance) {
@@ -1351,14 +1339,14 @@ struct Builder {
         const bool use_b = (attempt == 0) == prefer_b;
         if (use_b) {
           if (auto cut = cut_at(origin_b, b.runs.front(), true)) {
-            auto [near, far] = split_run(b.runs.front(), *cut, pieces);
+            auto [near, far] = split_run(b.runs.front(), *cut, slices);
             b.runs.front() = std::move(far);
             near.side = Side::Wale;
             from_b = true;
             return near;
           }
         } else if (auto cut = cut_at(origin_a, a.runs.back(), false)) {
-          auto [far, near] = split_run(a.runs.back(), *cut, pieces);
+          auto [far, near] = split_run(a.runs.back(), *cut, slices);
           a.runs.back() = std::move(far);
           near.side = Side::Wale;
           from_b = false;
@@ -1367,14 +1355,14 @@ struct Builder {
       }
       return std::nullopt;
     };
-    auto point = [&](int vertex) { return pieces.position[at(vertex)]; };
+    auto point = [&](int vertex) { return slices.position(vertex); };
     for (std::size_t i = 0; i < out.size(); ++i) {
       Chain& c = out[i];
       if (c.side != Side::Wale) {
         // A point where this chain meets the next course chain.
         Chain& b = out[(i + 1) % out.size()];
         if (&c == &b || b.side == Side::Wale || b.side == c.side) continue;
-        const Vec3 tip = point(pieces.from[at(b.runs.front().halfedges.front())]);
+        const Vec3 tip = point(slices.from(b.runs.front().halfedges.front()));
         bool from_b = false;
         std::optional<Run> stretch = take(c, b, tip, tip, from_b);
         if (!stretch) continue;
@@ -1391,8 +1379,8 @@ struct Builder {
       Chain& b = out[(i + 1) % out.size()];
       if (&a == &b || a.side == Side::Wale || b.side == Side::Wale) continue;
       if (!boundary_only(c)) continue;
-      const Vec3 start = point(pieces.from[at(c.runs.front().halfedges.front())]);
-      const Vec3 end = point(pieces.to(c.runs.back().halfedges.back()));
+      const Vec3 start = point(slices.from(c.runs.front().halfedges.front()));
+      const Vec3 end = point(slices.to(c.runs.back().halfedges.back()));
       if ((end - start).norm() >= length - tolerance) continue;
       bool from_b = false;
       std::optional<Run> stretch = take(a, b, end, start, from_b);
@@ -1412,12 +1400,12 @@ struct Builder {
     for (const Run& r : chain.runs) {
       for (int h : r.halfedges) {
         all.push_back(h);
-        total += pieces.length(h);
+        total += slices.length(h);
       }
     }
     double walked = 0;
     for (int h : all) {
-      walked += pieces.length(h);
+      walked += slices.length(h);
       if (walked >= 0.5 * total) return arc_of(h);
     }
     return all.empty() ? kNoArc : arc_of(all.back());
@@ -1520,10 +1508,8 @@ struct Builder {
     return steps;
   }
 
-  int first_vertex(const Chain& c) const {
-    return pieces.from[at(c.runs.front().halfedges.front())];
-  }
-  int last_vertex(const Chain& c) const { return pieces.to(c.runs.back().halfedges.back()); }
+  int first_vertex(const Chain& c) const { return slices.from(c.runs.front().halfedges.front()); }
+  int last_vertex(const Chain& c) const { return slices.to(c.runs.back().halfedges.back()); }
 
   // A strip around saddles of the row time (m >= 2 bottom and m top chains,
   // alternating; X-shaped for one saddle): one wale edge between two corners
@@ -1592,7 +1578,7 @@ struct Builder {
       if (!usable(k) || !usable((k + 2) % n)) continue;
       found = true;
       const double cost =
-          (pieces.position[at(corner(k))] - pieces.position[at(corner((k + 2) % n))]).norm() +
+          (slices.position(corner(k)) - slices.position(corner((k + 2) % n))).norm() +
           kSplitBalance * params.wale_mm * imbalance(k);
       if (cost < least) {
         least = cost;
@@ -2000,8 +1986,8 @@ struct Builder {
       throw std::logic_error("stitch meshing: chain ends disagree with the strip's sides");
     }
     if (left_shared && right_shared && a == 1 && b == 2 && high_on_level[0] != high_on_level[1]) {
-      // One fixed bottom side, a top of a level piece and a boundary piece:
-      // the boundary piece is the wale side of a short-row triangle.
+      // One fixed bottom side, a top of a level-curve segment and a boundary
+      // segment: the boundary segment is the wale side of a short-row triangle.
       const EdgeRole first = high_on_level[0] ? EdgeRole::CourseOut : EdgeRole::Wale;
       const EdgeRole second = high_on_level[1] ? EdgeRole::CourseOut : EdgeRole::Wale;
       add_face({l[0], l[1], t[1]}, {EdgeRole::CourseIn, first, second},
@@ -2273,43 +2259,43 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   Eigen::VectorXd t = row_time(disc, tris, params, result.stats);
   result.stats.solve_seconds = seconds_since(start);
   int bands = 1;
-  Pieces pieces;
+  BandSlices slices;
   std::map<int, std::vector<std::vector<int>>> loops;  // strip root -> boundary loops
   UnionFind strips_of(0);
-  // Rows, pieces and strips from t. A strip with a hole (an interior
+  // Rows, slices and strips from t. A strip with a hole (an interior
   // extremum of t) makes the row time be levelled and the rows be placed
   // again; a row time without one is used as fitted.
   auto find_strips = [&] {
-    // Strips: pieces of one band joined across their shared sides.
-    // Each strip's root is its lowest piece.
-    strips_of = UnionFind(pieces.band.size());
-    for (std::size_t h = 0; h < pieces.from.size(); ++h) {
-      const int tw = pieces.twin[h];
-      if (tw < 0 || pieces.level[h] >= 0) continue;
-      const int a = strips_of.find(pieces.piece[h]);
-      const int b = strips_of.find(pieces.piece[at(tw)]);
+    // Strips: slices of one band joined across their shared sides.
+    // Each strip's root is its lowest slice.
+    strips_of = UnionFind(at(slices.num_slices()));
+    for (int h = 0; h < slices.num_halfedges(); ++h) {
+      const int tw = slices.twin(h);
+      if (tw < 0 || slices.level[at(h)] >= 0) continue;
+      const int a = strips_of.find(slices.slice(h));
+      const int b = strips_of.find(slices.slice(tw));
       if (a != b) strips_of.unite(std::max(a, b), std::min(a, b));
     }
-    auto on_boundary = [&](int h) { return pieces.twin[at(h)] < 0 || pieces.level[at(h)] >= 0; };
+    auto on_boundary = [&](int h) { return slices.twin(h) < 0 || slices.level[at(h)] >= 0; };
     loops.clear();
-    std::vector<bool> visited(pieces.from.size(), false);
-    for (int h0 = 0; h0 < static_cast<int>(pieces.from.size()); ++h0) {
+    std::vector<bool> visited(at(slices.num_halfedges()), false);
+    for (int h0 = 0; h0 < slices.num_halfedges(); ++h0) {
       if (visited[at(h0)] || !on_boundary(h0)) continue;
       std::vector<int> loop;
       int h = h0;
       do {
         visited[at(h)] = true;
         loop.push_back(h);
-        int c = pieces.next(h);
+        int c = slices.next(h);
         int guard = 0;
         while (!on_boundary(c)) {
-          c = pieces.next(pieces.twin[at(c)]);
+          c = slices.next(slices.twin(c));
           if (++guard > 100000) throw std::logic_error("stitch meshing: vertex walk does not end");
         }
         h = c;
       } while (h != h0 && !visited[at(h)]);
       if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
-      loops[strips_of.find(pieces.piece[at(h0)])].push_back(std::move(loop));
+      loops[strips_of.find(slices.slice(h0))].push_back(std::move(loop));
     }
   };
   auto make_strips = [&](const std::vector<bool>& candidates) {
@@ -2317,7 +2303,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     const std::vector<int> pin =
         pin_saddles(disc, tris, rows, bands, 0.4 * params.saddle_wales * params.wale_mm,
                     params.saddle_wales * params.wale_mm, candidates, result.stats.saddles_pinned);
-    pieces = slice(disc, tris, rows, 1.0, bands, pin);
+    slices = slice(disc, tris, rows, 1.0, bands, pin);
     find_strips();
   };
   make_strips({});
@@ -2334,7 +2320,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   // than kLopsidedRatio, are held on a level and the rows are made again.
   if (params.saddle_wales > 0) {
     std::set<int> roots;
-    Builder probe{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+    Builder probe{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
     for (const auto& [root, strip_loops] : loops) {
       if (strip_loops.size() != 1) continue;
       int lows = 0;
@@ -2342,7 +2328,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
       double bottom = 0;
       double top = 0;
       for (const Chain& c :
-           probe.chains(probe.loop_runs(strip_loops.front(), pieces.band[at(root)], t, tris))) {
+           probe.chains(probe.loop_runs(strip_loops.front(), slices.band[at(root)], t, tris))) {
         lows += c.side == Side::Low ? 1 : 0;
         highs += c.side == Side::High ? 1 : 0;
         if (c.side != Side::Wale) (c.side == Side::Low ? bottom : top) += chain_length(c);
@@ -2355,9 +2341,9 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     }
     if (!roots.empty()) {
       std::vector<bool> candidates(disc.positions.size(), false);
-      for (std::size_t p = 0; p < pieces.band.size(); ++p) {
+      for (std::size_t p = 0; p < at(slices.num_slices()); ++p) {
         if (roots.count(strips_of.find(static_cast<int>(p))) == 0) continue;
-        for (int v : tris[at(pieces.tri[p])].v) candidates[at(v)] = true;
+        for (int v : tris[at(slices.tri[p])].v) candidates[at(v)] = true;
       }
       make_strips(candidates);
       // Held saddles make no extremum, so no strip with a hole; should one
@@ -2366,29 +2352,29 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     }
   }
   // Row ends: the boundary points 0.9 wale (`tip_side_wales`) from where a row's chains meet
-  // become piece vertices, so those rows can end in a wale side there.
+  // become slice vertices, so those rows can end in a wale side there.
   if (params.tip_side_wales > 0) {
     std::vector<HalfedgeSplit> splits;
     {
-      Builder probe{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+      Builder probe{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
       for (const auto& [root, strip_loops] : loops) {
         if (strip_loops.size() == 1) {
-          probe.chains(probe.loop_runs(strip_loops.front(), pieces.band[at(root)], t, tris));
+          probe.chains(probe.loop_runs(strip_loops.front(), slices.band[at(root)], t, tris));
         }
       }
       splits = std::move(probe.tip_splits);
     }
     if (!splits.empty()) {
-      pieces = split_halfedges(pieces, std::move(splits));
+      slices = split_halfedges(slices, std::move(splits));
       find_strips();
     }
   }
-  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  Builder builder{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   builder.mesh.course_mm = params.course_mm;
   builder.mesh.wale_mm = params.wale_mm;
   // Strips in row order, so level curves are sampled from below first.
   std::vector<std::pair<int, int>> order;
-  for (const auto& [root, strip_loops] : loops) order.push_back({pieces.band[at(root)], root});
+  for (const auto& [root, strip_loops] : loops) order.push_back({slices.band[at(root)], root});
   std::sort(order.begin(), order.end());
   // Each strip's chains, made once (empty for a strip with a hole).
   std::vector<std::vector<Chain>> strip_chains(order.size());
@@ -2405,7 +2391,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     const std::vector<std::vector<int>>& strip_loops = loops[root];
     ++builder.stats.strips;
     const std::string where =
-        "row " + std::to_string(band) + " strip at piece " + std::to_string(root);
+        "row " + std::to_string(band) + " strip at slice " + std::to_string(root);
     if (strip_loops.size() != 1) {
       builder.problems.push_back(where + ": " + std::to_string(strip_loops.size()) +
                                  " boundary loops (a strip with a hole: the row time has an "
