@@ -4,6 +4,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -37,5 +39,88 @@ constexpr double kLengthTolerance = 0.15;
 // The cost of a side whose length is off its target by the fraction `off`:
 // its square, and `outside` more if it is over kLengthTolerance.
 double length_cost(double off, double outside);
+
+// ---------------------------------------------------------------------------
+// Step 1: triangles with a wale direction each, and the row time t
+// (row_time.cpp).
+
+// A triangle of the disc (its faces split into triangles).
+struct Triangle {
+  std::array<int, 3> v{};
+  int face = -1;
+  Vec3 normal = Vec3::Zero();  // unit
+  double area = 0;
+  Vec3 wale = Vec3::Zero();  // unit, in the triangle's plane
+  Vec3 grad = Vec3::Zero();  // gradient of t
+};
+
+// The disc's faces as triangles, each with the wale direction its face's
+// labels give: the course sides turned a quarter turn about the normal, or
+// the +v sides where a face has no course side. Quads are split along the
+// shorter diagonal, other polygons as a fan.
+std::vector<Triangle> triangulate(const LabelledDisc& disc);
+
+// Least-squares fit of t to the target gradients (Poisson equation with
+// the cotangent Laplacian), then straightening fits towards unit speed
+// until t settles. t is in rows (|grad t| = 1 / wale_mm) and starts at 0.
+// Sets each triangle's `grad` and stats.straighten_fits and
+// label_deviation_deg. Throws std::runtime_error when the Laplacian cannot
+// be factorised.
+Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
+                         const StitchMeshParams& params, StitchMeshStats& stats);
+
+// ---------------------------------------------------------------------------
+// Step 2, rows (row_time.cpp, row_time_critical_points.cpp).
+
+// Row placement: t mapped monotonically so that rows are wale_mm tall on
+// average over each stretch of t. Where t is flat (labels that converge or
+// curl keep |grad t| below 1 / wale_mm), equal steps of t would give rows
+// that are too tall; there the mapped value rises faster. Per thin slab of t
+// the height is its area over the length of its level curve; the mapped
+// value at t is the height below t in rows (scaled so there is a whole
+// number of rows). Returns the mapped value per vertex; `bands` receives the
+// number of rows.
+Eigen::VectorXd row_levels(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                           const Eigen::VectorXd& t, const StitchMeshParams& params, int& bands);
+
+// The vertices joined to each vertex by a side of the triangles.
+std::vector<std::vector<int>> vertex_neighbours(const std::vector<Triangle>& tris, std::size_t n);
+
+// Per vertex of the disc: whether it lies on the disc boundary.
+std::vector<bool> on_disc_boundary(const LabelledDisc& disc);
+
+// A row time with an interior extremum has closed level curves round it:
+// the band there is a strip with a hole, which no zip can fill. The
+// least-squares fit can make one even on consistent labels (its curl-free
+// part need not follow the labels' turning everywhere). This levels t so
+// that from every vertex a path runs down to the disc boundary on which t
+// never rises, and another on which t never falls: pits are filled to their
+// spill level and peaks cut to theirs (morphological reconstruction by
+// priority flood from the boundary, alternated until neither changes t).
+// Then every component of {t < c} and of {t > c} reaches the boundary, so
+// no band has a hole. Returns how many vertices changed.
+int level_interior_extrema(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                           Eigen::VectorXd& t);
+
+// Saddles on a level (step 2, docs/stitch-mesh.md "Saddles on a level").
+// Near a saddle of t the level curves form an X. A saddle inside a band
+// makes a strip with two bottom and two top chains, which split_folds can
+// only cut between corners of its chains, far from the saddle, so the
+// band's height there ends up in long wale sides; a saddle on the disc
+// boundary (half of one, where a cut runs through it, or a fold of the cut
+// across the rows) makes a strip whose bottom and top differ in length,
+// zipped with a fan of shaping. Held exactly on a level, the saddle is where
+// the level curve meets itself or the boundary: the bands on either side are
+// strips that meet at the saddle, and no strip needs to go round it.
+// The rows are raised or lowered round each saddle among `candidates` by a
+// bump, flat up to `inner_mm` from it and falling smoothly to nothing at
+// `outer_mm` (along the mesh's edges), so that the saddle's value is a
+// whole level; saddles already held stay where they are. A bump is not made
+// where it would turn a vertex inside the disc into an extremum, stop a held
+// saddle being one, or bring a neighbour of a held saddle onto its level.
+// Returns the level per vertex (-1 for none).
+std::vector<int> pin_saddles(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                             Eigen::VectorXd& rows, int bands, double inner_mm, double outer_mm,
+                             const std::vector<bool>& candidates, int& pinned);
 
 }  // namespace planner::stitch_meshing
