@@ -24,6 +24,15 @@ cloth::TriangleMeshQuery disc_surface(const LabelledDisc& disc) {
   return cloth::TriangleMeshQuery(disc.positions, std::move(triangles));
 }
 
+std::optional<double> sphere_exit(const Vec3& a, const Vec3& e, const Vec3& centre, double radius) {
+  const Vec3 g = a - centre;
+  const double ee = e.dot(e);
+  const double ge = g.dot(e);
+  const double root = ge * ge - ee * (g.dot(g) - radius * radius);
+  if (!(ee > 0) || root < 0) return std::nullopt;
+  return (-ge + std::sqrt(root)) / ee;
+}
+
 double length_cost(double off, double outside) {
   return off * off + (std::abs(off) > kLengthTolerance ? outside : 0.0);
 }

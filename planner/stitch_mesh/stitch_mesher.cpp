@@ -22,7 +22,6 @@
 #include <utility>
 
 #include "planner/common/index.hpp"
-#include "planner/common/union_find.hpp"
 #include "planner/stitch_mesh/stitch_meshing.hpp"
 #include "simulators/cloth/sdf.hpp"
 
@@ -31,218 +30,6 @@ namespace stitch_meshing {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// ---------------------------------------------------------------------------
-// Step 2: the triangles cut along the row levels.
-
-// Each face of `mesh` is a slice: the part of one triangle inside one band
-// (between consecutive levels). Its vertices are the disc's vertices, then
-// the points where level curves cross the triangles' sides. Slices of one
-// band that share a side (not a level curve) make up a strip.
-struct BandSlices {
-  HalfedgeMesh mesh;
-  std::vector<int> band;         // per slice
-  std::vector<int> tri;          // per slice: the triangle it is part of
-  std::vector<int> level;        // per half-edge: level index of a level-curve side, else -1
-  std::vector<int> source_face;  // per half-edge on the disc boundary: disc face, else -1
-  std::vector<int> source_side;  // ... and its side
-  std::vector<bool> pinned;      // per disc vertex: a saddle of t held on a level
-
-  int num_slices() const { return mesh.num_faces(); }
-  int num_halfedges() const { return mesh.num_halfedges(); }
-  const Vec3& position(int v) const { return mesh.position(v); }
-  int from(int h) const { return mesh.from(h); }
-  int to(int h) const { return mesh.to(h); }
-  int next(int h) const { return mesh.next(h); }
-  int twin(int h) const { return mesh.twin(h); }
-  int slice(int h) const { return mesh.face(h); }
-  double length(int h) const { return mesh.edge_length(h); }
-  bool is_pinned(int v) const { return at(v) < pinned.size() && pinned[at(v)]; }
-};
-
-// `pin` holds, per input vertex, the level a saddle of t is held on (-1 for
-// none): such a vertex lies on its level, a corner of the slices of both
-// bands, and the level curves through it meet there.
-BandSlices slice(const LabelledDisc& disc, const std::vector<Triangle>& tris,
-                 const Eigen::VectorXd& t, double spacing, int bands, const std::vector<int>& pin) {
-  BandSlices out;
-  PolygonMesh polygons;
-  polygons.positions = disc.positions;
-  out.pinned.assign(disc.positions.size(), false);
-  for (std::size_t v = 0; v < pin.size(); ++v) out.pinned[v] = pin[v] >= 0;
-  auto pin_of = [&](int v) { return pin.empty() ? -1 : pin[at(v)]; };
-  // Directed input edges that are sides of input faces on the boundary.
-  std::unordered_map<std::uint64_t, std::pair<int, int>> directed;
-  for (std::size_t f = 0; f < disc.faces.size(); ++f) {
-    const std::vector<int>& face = disc.faces[f];
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      directed[key(face[i], face[(i + 1) % face.size()])] = {static_cast<int>(f),
-                                                             static_cast<int>(i)};
-    }
-  }
-  // Values a hair off the levels, so no vertex lies on one.
-  std::vector<double> value(at(static_cast<int>(t.size())));
-  for (int i = 0; i < t.size(); ++i) {
-    double x = t[i] / spacing;
-    const double nearest = std::round(x);
-    if (pin_of(i) >= 0) {
-      x = pin_of(i);
-    } else if (std::abs(x - nearest) < 1e-6) {
-      x = nearest + 2e-6;
-    }
-    value[at(i)] = x;
-  }
-  auto band_of = [&](double x) {
-    return std::clamp(static_cast<int>(std::floor(x)), 0, bands - 1);
-  };
-  // A pinned vertex on level k belongs to bands k - 1 and k.
-  auto lowest_band = [&](int v) { return pin_of(v) >= 0 ? pin_of(v) - 1 : band_of(value[at(v)]); };
-  auto highest_band = [&](int v) { return pin_of(v) >= 0 ? pin_of(v) : band_of(value[at(v)]); };
-  std::map<std::tuple<int, int, int>, int> crossings;
-  auto get_crossing = [&](int a, int b, int level) {
-    const int lo = std::min(a, b);
-    const int hi = std::max(a, b);
-    auto [it, inserted] = crossings.emplace(std::make_tuple(lo, hi, level), 0);
-    if (inserted) {
-      const double s = (level - value[at(lo)]) / (value[at(hi)] - value[at(lo)]);
-      it->second = static_cast<int>(polygons.positions.size());
-      polygons.positions.push_back((1 - s) * disc.positions[at(lo)] + s * disc.positions[at(hi)]);
-    }
-    return it->second;
-  };
-  struct Corner {
-    int vertex;
-    int edge;     // triangle side (0..2) of a crossing, -1 for an input vertex
-    int level;    // of a crossing or a pinned vertex
-    bool pinned;  // an input vertex on `level`
-  };
-  for (std::size_t k = 0; k < tris.size(); ++k) {
-    const Triangle& tri = tris[k];
-    int lo = bands;
-    int hi = -1;
-    for (int v : tri.v) {
-      lo = std::min(lo, lowest_band(v));
-      hi = std::max(hi, highest_band(v));
-    }
-    for (int b = lo; b <= hi; ++b) {
-      std::vector<Corner> corners;
-      for (int i = 0; i < 3; ++i) {
-        const int p = tri.v[at(i)];
-        const int q = tri.v[at((i + 1) % 3)];
-        if (lowest_band(p) == b || highest_band(p) == b) {
-          corners.push_back({p, -1, pin_of(p), pin_of(p) >= 0});
-        }
-        const double vp = value[at(p)];
-        const double vq = value[at(q)];
-        // Levels b (bottom) and b + 1 (top) crossed by p -> q, in travel
-        // order (not the level of a pinned end: the curve passes through it).
-        std::vector<int> levels;
-        for (int level : {b, b + 1}) {
-          if (level <= 0 || level >= bands || level == pin_of(p) || level == pin_of(q)) continue;
-          if ((vp < level) != (vq < level)) levels.push_back(level);
-        }
-        if (levels.size() == 2 && vp > vq) std::swap(levels[0], levels[1]);
-        for (int level : levels) corners.push_back({get_crossing(p, q, level), i, level, false});
-      }
-      if (corners.size() < 3) continue;
-      std::vector<int>& face = polygons.faces.emplace_back();
-      out.band.push_back(b);
-      out.tri.push_back(static_cast<int>(k));
-      for (std::size_t c = 0; c < corners.size(); ++c) {
-        const Corner& a = corners[c];
-        const Corner& z = corners[(c + 1) % corners.size()];
-        face.push_back(a.vertex);
-        int level = -1;
-        int side = -1;  // triangle side the half-edge lies on
-        const bool a_on = a.edge >= 0 || a.pinned;
-        const bool z_on = z.edge >= 0 || z.pinned;
-        if (a_on && z_on && a.level == z.level && !(a.pinned && z.pinned) &&
-            (a.pinned || z.pinned || a.edge != z.edge)) {
-          level = a.level;
-        } else if (a.edge >= 0) {
-          side = a.edge;
-        } else if (z.edge >= 0) {
-          side = z.edge;
-        } else {
-          // Two input vertices: the side that starts at a.
-          for (int i = 0; i < 3; ++i) {
-            if (tri.v[at(i)] == a.vertex) side = i;
-          }
-        }
-        out.level.push_back(level);
-        int source_face = -1;
-        int source_side = -1;
-        if (side >= 0) {
-          const int p = tri.v[at(side)];
-          const int q = tri.v[at((side + 1) % 3)];
-          if (directed.find(key(q, p)) == directed.end()) {
-            auto it = directed.find(key(p, q));
-            if (it != directed.end()) {
-              source_face = it->second.first;
-              source_side = it->second.second;
-            }
-          }
-        }
-        out.source_face.push_back(source_face);
-        out.source_side.push_back(source_side);
-      }
-    }
-  }
-  out.mesh = HalfedgeMesh(std::move(polygons));
-  return out;
-}
-
-// The larger t at which a + t e is `radius` from `centre`, or nullopt when
-// the line misses that sphere (or e is zero).
-std::optional<double> sphere_exit(const Vec3& a, const Vec3& e, const Vec3& centre, double radius) {
-  const Vec3 g = a - centre;
-  const double ee = e.dot(e);
-  const double ge = g.dot(e);
-  const double root = ge * ge - ee * (g.dot(g) - radius * radius);
-  if (!(ee > 0) || root < 0) return std::nullopt;
-  return (-ge + std::sqrt(root)) / ee;
-}
-
-// A point to add on a half-edge of the disc boundary: at parameter s from its start.
-struct HalfedgeSplit {
-  int halfedge = -1;
-  double s = 0;
-  Vec3 point = Vec3::Zero();
-};
-
-// The slices with points added on boundary half-edges (each split half-edge
-// becomes two with the same origin; boundary half-edges have no twin).
-BandSlices split_halfedges(const BandSlices& in, std::vector<HalfedgeSplit> splits) {
-  std::sort(splits.begin(), splits.end(), [](const HalfedgeSplit& a, const HalfedgeSplit& b) {
-    return std::tie(a.halfedge, a.s) < std::tie(b.halfedge, b.s);
-  });
-  BandSlices out;
-  PolygonMesh polygons;
-  polygons.positions = in.mesh.polygons().positions;
-  out.band = in.band;
-  out.tri = in.tri;
-  out.pinned = in.pinned;
-  std::size_t next_split = 0;
-  for (int p = 0; p < in.num_slices(); ++p) {
-    std::vector<int>& face = polygons.faces.emplace_back();
-    for (int h = in.mesh.face_start(p); h < in.mesh.face_start(p) + in.mesh.degree(p); ++h) {
-      auto push = [&](int from) {
-        face.push_back(from);
-        out.level.push_back(in.level[at(h)]);
-        out.source_face.push_back(in.source_face[at(h)]);
-        out.source_side.push_back(in.source_side[at(h)]);
-      };
-      push(in.from(h));
-      while (next_split < splits.size() && splits[next_split].halfedge == h) {
-        polygons.positions.push_back(splits[next_split].point);
-        push(static_cast<int>(polygons.positions.size()) - 1);
-        ++next_split;
-      }
-    }
-  }
-  out.mesh = HalfedgeMesh(std::move(polygons));
-  return out;
 }
 
 // ---------------------------------------------------------------------------
@@ -1804,58 +1591,20 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   result.stats.solve_seconds = seconds_since(start);
   int bands = 1;
   BandSlices slices;
-  std::map<int, std::vector<std::vector<int>>> loops;  // strip root -> boundary loops
-  UnionFind strips_of(0);
+  Strips strips;
   // Rows, slices and strips from t. A strip with a hole (an interior
   // extremum of t) makes the row time be levelled and the rows be placed
   // again; a row time without one is used as fitted.
-  auto find_strips = [&] {
-    // Strips: slices of one band joined across their shared sides.
-    // Each strip's root is its lowest slice.
-    strips_of = UnionFind(at(slices.num_slices()));
-    for (int h = 0; h < slices.num_halfedges(); ++h) {
-      const int tw = slices.twin(h);
-      if (tw < 0 || slices.level[at(h)] >= 0) continue;
-      const int a = strips_of.find(slices.slice(h));
-      const int b = strips_of.find(slices.slice(tw));
-      if (a != b) strips_of.unite(std::max(a, b), std::min(a, b));
-    }
-    auto on_boundary = [&](int h) { return slices.twin(h) < 0 || slices.level[at(h)] >= 0; };
-    loops.clear();
-    std::vector<bool> visited(at(slices.num_halfedges()), false);
-    for (int h0 = 0; h0 < slices.num_halfedges(); ++h0) {
-      if (visited[at(h0)] || !on_boundary(h0)) continue;
-      std::vector<int> loop;
-      int h = h0;
-      do {
-        visited[at(h)] = true;
-        loop.push_back(h);
-        int c = slices.next(h);
-        int guard = 0;
-        while (!on_boundary(c)) {
-          c = slices.next(slices.twin(c));
-          if (++guard > 100000) throw std::logic_error("stitch meshing: vertex walk does not end");
-        }
-        h = c;
-      } while (h != h0 && !visited[at(h)]);
-      if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
-      loops[strips_of.find(slices.slice(h0))].push_back(std::move(loop));
-    }
-  };
   auto make_strips = [&](const std::vector<bool>& candidates) {
     Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
     const std::vector<int> pin =
         pin_saddles(disc, tris, rows, bands, 0.4 * params.saddle_wales * params.wale_mm,
                     params.saddle_wales * params.wale_mm, candidates, result.stats.saddles_pinned);
     slices = slice(disc, tris, rows, 1.0, bands, pin);
-    find_strips();
+    strips = find_strips(slices);
   };
   make_strips({});
-  auto has_hole = [&] {
-    return std::any_of(loops.begin(), loops.end(),
-                       [](const auto& entry) { return entry.second.size() > 1; });
-  };
-  if (has_hole()) {
+  if (strips.has_hole()) {
     result.stats.row_time_levelled = level_interior_extrema(disc, tris, t);
     make_strips({});
   }
@@ -1865,7 +1614,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   if (params.saddle_wales > 0) {
     std::set<int> roots;
     Builder probe{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
-    for (const auto& [root, strip_loops] : loops) {
+    for (const auto& [root, strip_loops] : strips.loops) {
       if (strip_loops.size() != 1) continue;
       int lows = 0;
       int highs = 0;
@@ -1886,13 +1635,13 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     if (!roots.empty()) {
       std::vector<bool> candidates(disc.positions.size(), false);
       for (std::size_t p = 0; p < at(slices.num_slices()); ++p) {
-        if (roots.count(strips_of.find(static_cast<int>(p))) == 0) continue;
+        if (roots.count(strips.root[p]) == 0) continue;
         for (int v : tris[at(slices.tri[p])].v) candidates[at(v)] = true;
       }
       make_strips(candidates);
       // Held saddles make no extremum, so no strip with a hole; should one
       // appear all the same, the rows are made as before.
-      if (has_hole()) make_strips({});
+      if (strips.has_hole()) make_strips({});
     }
   }
   // Row ends: the boundary points 0.9 wale (`tip_side_wales`) from where a row's chains meet
@@ -1901,7 +1650,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     std::vector<HalfedgeSplit> splits;
     {
       Builder probe{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
-      for (const auto& [root, strip_loops] : loops) {
+      for (const auto& [root, strip_loops] : strips.loops) {
         if (strip_loops.size() == 1) {
           probe.chains(probe.loop_runs(strip_loops.front(), slices.band[at(root)], t, tris));
         }
@@ -1910,7 +1659,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     }
     if (!splits.empty()) {
       slices = split_halfedges(slices, std::move(splits));
-      find_strips();
+      strips = find_strips(slices);
     }
   }
   Builder builder{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
@@ -1918,13 +1667,14 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   builder.mesh.wale_mm = params.wale_mm;
   // Strips in row order, so level curves are sampled from below first.
   std::vector<std::pair<int, int>> order;
-  for (const auto& [root, strip_loops] : loops) order.push_back({slices.band[at(root)], root});
+  for (const auto& [root, strip_loops] : strips.loops)
+    order.push_back({slices.band[at(root)], root});
   std::sort(order.begin(), order.end());
   // Each strip's chains, made once (empty for a strip with a hole).
   std::vector<std::vector<Chain>> strip_chains(order.size());
   for (std::size_t i = 0; i < order.size(); ++i) {
     const auto& [band, root] = order[i];
-    const std::vector<std::vector<int>>& strip_loops = loops[root];
+    const std::vector<std::vector<int>>& strip_loops = strips.loops[root];
     if (strip_loops.size() == 1) {
       strip_chains[i] = builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris));
     }
@@ -1932,7 +1682,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   for (auto it = strip_chains.rbegin(); it != strip_chains.rend(); ++it) builder.plan_minimums(*it);
   for (std::size_t i = 0; i < order.size(); ++i) {
     const auto& [band, root] = order[i];
-    const std::vector<std::vector<int>>& strip_loops = loops[root];
+    const std::vector<std::vector<int>>& strip_loops = strips.loops[root];
     ++builder.stats.strips;
     const std::string where =
         "row " + std::to_string(band) + " strip at slice " + std::to_string(root);

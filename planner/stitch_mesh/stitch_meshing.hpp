@@ -7,9 +7,12 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <vector>
 
 #include "planner/common/index.hpp"
+#include "planner/mesh/mesh.hpp"
 #include "planner/stitch_mesh/stitch_mesher.hpp"
 #include "simulators/cloth/sdf.hpp"
 
@@ -30,6 +33,10 @@ Vec3 face_normal(const LabelledDisc& disc, const std::vector<int>& face);
 // The disc as triangles (fans of its faces), for exact distances and
 // nearest points.
 cloth::TriangleMeshQuery disc_surface(const LabelledDisc& disc);
+
+// The larger t at which a + t e is `radius` from `centre`, or nullopt when
+// the line misses that sphere (or e is zero).
+std::optional<double> sphere_exit(const Vec3& a, const Vec3& e, const Vec3& centre, double radius);
 
 // A side is the right length when it is within this fraction of its target
 // (StitchMeshFigures::within_15_percent; the shared-mesh test asks 90% of
@@ -122,5 +129,64 @@ int level_interior_extrema(const LabelledDisc& disc, const std::vector<Triangle>
 std::vector<int> pin_saddles(const LabelledDisc& disc, const std::vector<Triangle>& tris,
                              Eigen::VectorXd& rows, int bands, double inner_mm, double outer_mm,
                              const std::vector<bool>& candidates, int& pinned);
+
+// ---------------------------------------------------------------------------
+// Step 2, slices and strips (band_slices.cpp).
+
+// Each face of `mesh` is a slice: the part of one triangle inside one band
+// (between consecutive levels). Its vertices are the disc's vertices, then
+// the points where level curves cross the triangles' sides. Slices of one
+// band that share a side (not a level curve) make up a strip.
+struct BandSlices {
+  HalfedgeMesh mesh;
+  std::vector<int> band;         // per slice
+  std::vector<int> tri;          // per slice: the triangle it is part of
+  std::vector<int> level;        // per half-edge: level index of a level-curve side, else -1
+  std::vector<int> source_face;  // per half-edge on the disc boundary: disc face, else -1
+  std::vector<int> source_side;  // ... and its side
+  std::vector<bool> pinned;      // per disc vertex: a saddle of t held on a level
+
+  int num_slices() const { return mesh.num_faces(); }
+  int num_halfedges() const { return mesh.num_halfedges(); }
+  const Vec3& position(int v) const { return mesh.position(v); }
+  int from(int h) const { return mesh.from(h); }
+  int to(int h) const { return mesh.to(h); }
+  int next(int h) const { return mesh.next(h); }
+  int twin(int h) const { return mesh.twin(h); }
+  int slice(int h) const { return mesh.face(h); }
+  double length(int h) const { return mesh.edge_length(h); }
+  bool is_pinned(int v) const { return at(v) < pinned.size() && pinned[at(v)]; }
+};
+
+// The triangles cut at the whole levels of t / spacing (levels 1 .. bands-1).
+// `pin` holds, per disc vertex, the level a saddle of t is held on (-1 for
+// none; empty for no saddles held): such a vertex lies on its level, a
+// corner of the slices of both bands, and the level curves through it meet
+// there. Slices are numbered triangle by triangle, bottom band first; the
+// half-edges of each in counter-clockwise order.
+BandSlices slice(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                 const Eigen::VectorXd& t, double spacing, int bands, const std::vector<int>& pin);
+
+// A point to add on a half-edge of the disc boundary: at parameter s from its start.
+struct HalfedgeSplit {
+  int halfedge = -1;
+  double s = 0;
+  Vec3 point = Vec3::Zero();
+};
+
+// The slices with points added on boundary half-edges (each split half-edge
+// becomes two with the same origin; boundary half-edges have no twin).
+BandSlices split_halfedges(const BandSlices& in, std::vector<HalfedgeSplit> splits);
+
+// The strips of a slicing, each with its boundary loops: the half-edges on
+// a level curve or on the disc boundary, in walk order (the strip on the
+// left). A strip is named by its root, its lowest slice.
+struct Strips {
+  std::vector<int> root;                               // per slice
+  std::map<int, std::vector<std::vector<int>>> loops;  // root -> boundary loops
+  // Whether a strip has more than one boundary loop (a hole).
+  bool has_hole() const;
+};
+Strips find_strips(const BandSlices& slices);
 
 }  // namespace planner::stitch_meshing
