@@ -58,47 +58,6 @@ constexpr double kLopsidedWales = 20.0;
 // the shared-mesh test (docs/stitch-mesh.md, step 3).
 constexpr double kBoundaryOutsideCost = 1.0;
 
-enum class Side : std::uint8_t { Low, High, Wale };
-
-struct Run {
-  Side side = Side::Wale;
-  bool level = false;          // an isoline (shared with the next strip), not the disc boundary
-  std::vector<int> halfedges;  // in loop order
-  double length = 0;
-};
-
-struct Chain {
-  Side side = Side::Wale;
-  std::vector<Run> runs;
-};
-
-double chain_length(const Chain& chain) {
-  double length = 0;
-  for (const Run& r : chain.runs) length += r.length;
-  return length;
-}
-
-// A chain of disc boundary only (no level curve).
-bool boundary_only(const Chain& chain) {
-  return std::none_of(chain.runs.begin(), chain.runs.end(), [](const Run& r) { return r.level; });
-}
-
-// Neighbouring boundary runs of a chain are one stretch of boundary: join
-// them into one run (isoline runs stay apart).
-void join_boundary_runs(Chain& chain) {
-  std::vector<Run> joined;
-  for (Run& r : chain.runs) {
-    if (!joined.empty() && !joined.back().level && !r.level) {
-      joined.back().halfedges.insert(joined.back().halfedges.end(), r.halfedges.begin(),
-                                     r.halfedges.end());
-      joined.back().length += r.length;
-    } else {
-      joined.push_back(std::move(r));
-    }
-  }
-  chain.runs = std::move(joined);
-}
-
 struct Builder {
   const LabelledDisc& disc;
   const StitchMeshParams& params;
@@ -118,8 +77,6 @@ struct Builder {
   std::unordered_map<std::uint64_t, std::size_t> face_below;
   // Level curve (by any of its undirected slice edges) -> fewest segments.
   std::unordered_map<std::uint64_t, int> min_segments;
-  // Points to add on boundary half-edges, for row ends (end_rows_in_wale_sides).
-  std::vector<HalfedgeSplit> tip_splits;
 
   int stitch_vertex(int slice_vertex) {
     auto [it, inserted] = anchor.emplace(slice_vertex, 0);
@@ -458,281 +415,6 @@ struct Builder {
       }
     }
     mesh.faces.push_back(std::move(face));
-  }
-
-  std::vector<Run> loop_runs(const std::vector<int>& loop, int band, const Eigen::VectorXd&,
-                             const std::vector<Triangle>& tris) {
-    std::vector<Run> runs;
-    for (int h : loop) {
-      Run part;
-      const double length = slices.length(h);
-      const int level = slices.level[at(h)];
-      if (level >= 0) {
-        part.level = true;
-        part.side = level == band ? Side::Low : Side::High;
-      } else {
-        // §6.2: the side's direction against the row direction.
-        const Triangle& tri = tris[at(slices.tri[at(slices.slice(h))])];
-        const Vec3 e = slices.position(slices.to(h)) - slices.position(slices.from(h));
-        const Vec3 outward = e.cross(tri.normal);
-        const double c = tri.grad.norm() > 0 && outward.norm() > 0
-                             ? tri.grad.normalized().dot(outward.normalized())
-                             : 0.0;
-        part.side = c > params.side_cosine    ? Side::High
-                    : c < -params.side_cosine ? Side::Low
-                                              : Side::Wale;
-      }
-      // A level curve through a pinned saddle is two runs there, so the
-      // saddle is a stitch vertex of both (it is where four runs meet).
-      const bool breaks = part.level && slices.is_pinned(slices.from(h));
-      if (!runs.empty() && runs.back().level == part.level && runs.back().side == part.side &&
-          !breaks) {
-        runs.back().halfedges.push_back(h);
-        runs.back().length += length;
-      } else {
-        part.halfedges.push_back(h);
-        part.length = length;
-        runs.push_back(std::move(part));
-      }
-    }
-    if (runs.size() > 1 && runs.front().level == runs.back().level &&
-        runs.front().side == runs.back().side &&
-        !(runs.front().level && slices.is_pinned(slices.from(runs.front().halfedges.front())))) {
-      runs.back().halfedges.insert(runs.back().halfedges.end(), runs.front().halfedges.begin(),
-                                   runs.front().halfedges.end());
-      runs.back().length += runs.front().length;
-      runs.erase(runs.begin());
-    }
-    return runs;
-  }
-
-  // Groups runs into chains: short boundary course runs become wale; a wale
-  // run between two chains of one kind joins them.
-  std::vector<Chain> chains(std::vector<Run> runs) {
-    for (Run& run : runs) {
-      if (!run.level && run.side != Side::Wale && run.length < 0.5 * params.course_mm) {
-        run.side = Side::Wale;
-      }
-    }
-    std::vector<Chain> out;
-    auto merge_same = [&]() {
-      std::vector<Chain> merged;
-      for (Chain& c : out) {
-        if (!merged.empty() && merged.back().side == c.side) {
-          for (Run& r : c.runs) merged.back().runs.push_back(std::move(r));
-        } else {
-          merged.push_back(std::move(c));
-        }
-      }
-      if (merged.size() > 1 && merged.front().side == merged.back().side) {
-        for (Run& r : merged.front().runs) merged.back().runs.push_back(std::move(r));
-        merged.erase(merged.begin());
-      }
-      out = std::move(merged);
-    };
-    for (Run& run : runs) {
-      Chain c;
-      c.side = run.side;
-      c.runs.push_back(std::move(run));
-      out.push_back(std::move(c));
-    }
-    merge_same();
-    bool changed = true;
-    while (changed && out.size() > 2) {
-      changed = false;
-      for (std::size_t i = 0; i < out.size(); ++i) {
-        const Chain& before = out[(i + out.size() - 1) % out.size()];
-        const Chain& after = out[(i + 1) % out.size()];
-        if (out[i].side == Side::Wale && before.side == after.side) {
-          out[i].side = before.side;
-          changed = true;
-        }
-      }
-      merge_same();
-      // A short stretch of boundary facing up or down between chains of the
-      // other kind is a step of a jagged cut, not a row end: a wale side.
-      if (!changed && out.size() > 2) {
-        for (Chain& c : out) {
-          if (c.side == Side::Wale) continue;
-          if (boundary_only(c) && chain_length(c) < params.step_mm_factor * params.wale_mm) {
-            c.side = Side::Wale;
-            changed = true;
-            break;
-          }
-        }
-        merge_same();
-      }
-      // Still more than one chain of a kind: the boundary folds against the
-      // rows. The shortest boundary-only course chain gives way first (it
-      // joins its neighbours' kind, or becomes a side).
-      int lows = 0;
-      for (const Chain& c : out) lows += c.side == Side::Low;
-      if (!changed && lows > 1) {
-        double shortest = std::numeric_limits<double>::infinity();
-        Chain* pick = nullptr;
-        for (Chain& c : out) {
-          if (c.side == Side::Wale) continue;
-          const double length = chain_length(c);
-          if (boundary_only(c) && length < shortest) {
-            shortest = length;
-            pick = &c;
-          }
-        }
-        if (pick != nullptr) {
-          pick->side = Side::Wale;
-          changed = true;
-        }
-        merge_same();
-      }
-    }
-    // Neighbouring boundary runs of one chain are one stretch of boundary.
-    for (Chain& c : out) join_boundary_runs(c);
-    // Short boundary runs at the ends of a course chain beside a wale side
-    // join the wale side: a wale edge, not a sliver course edge.
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      if (out[i].side != Side::Wale) continue;
-      Chain& before = out[(i + out.size() - 1) % out.size()];
-      Chain& after = out[(i + 1) % out.size()];
-      if (before.side != Side::Wale && before.runs.size() > 1 && !before.runs.back().level &&
-          before.runs.back().length < 0.5 * params.course_mm) {
-        out[i].runs.insert(out[i].runs.begin(), std::move(before.runs.back()));
-        before.runs.pop_back();
-      }
-      if (after.side != Side::Wale && after.runs.size() > 1 && !after.runs.front().level &&
-          after.runs.front().length < 0.5 * params.course_mm) {
-        out[i].runs.push_back(std::move(after.runs.front()));
-        after.runs.erase(after.runs.begin());
-      }
-    }
-    end_rows_in_wale_sides(out);
-    return out;
-  }
-
-  // Splits run `r` after its first `count` half-edges.
-  static std::pair<Run, Run> split_run(const Run& r, std::size_t count, const BandSlices& slices) {
-    Run a;
-    Run b;
-    a.side = b.side = r.side;
-    a.level = b.level = r.level;
-    for (std::size_t k = 0; k < r.halfedges.size(); ++k) {
-      const int h = r.halfedges[k];
-      Run& into = k < count ? a : b;
-      into.halfedges.push_back(h);
-      into.length += slices.length(h);
-    }
-    return {a, b};
-  }
-
-  // §6.3, row ends. A row that ends where its bottom and top chains meet on
-  // the boundary (a wedge: the boundary crosses the rows obliquely) ends
-  // instead in a wale side: the stretch of the oblique boundary next to the
-  // point, `tip_side_wales` (0.9) wales long in a straight line. The faces
-  // before it lean towards the boundary and keep their height, where a wedge
-  // would shrink them to nothing and fan increases or decreases into its
-  // point (docs/stitch-mesh.md, step 4, "Row ends"). A wale side on the
-  // boundary shorter than that (the boundary turns from along the wale to
-  // oblique within the row) is lengthened the same way. The stretch ends at
-  // a slice vertex; where none lies at that distance, `tip_splits` receives
-  // the point to add (the caller adds them and makes the chains again).
-  void end_rows_in_wale_sides(std::vector<Chain>& out) {
-    if (!(params.tip_side_wales > 0) || out.size() < 2) return;
-    const double length = params.tip_side_wales * params.wale_mm;
-    const double tolerance = 0.02 * params.wale_mm;
-    // Where boundary run r, walked forward from its front or backward from
-    // its back, is `length` from `origin` in a straight line: the number of
-    // half-edges before that vertex, or nullopt (a split point to add is
-    // recorded when the distance is reached inside a half-edge).
-    auto cut_at = [&](const Vec3& origin, const Run& r,
-                      bool from_front) -> std::optional<std::size_t> {
-      if (r.level || r.length < length - tolerance) return std::nullopt;
-      const std::size_t n = r.halfedges.size();
-      for (std::size_t k = 0; k < n; ++k) {
-        const int h = from_front ? r.halfedges[k] : r.halfedges[n - 1 - k];
-        const Vec3 near = slices.position(from_front ? slices.from(h) : slices.to(h));
-        const Vec3 far = slices.position(from_front ? slices.to(h) : slices.from(h));
-        const double d_far = (far - origin).norm();
-        if (d_far < length - tolerance) continue;
-        if (std::abs(d_far - length) <= tolerance) {
-          if (k + 1 == n) return std::nullopt;  // the whole run: nothing left of it
-          return from_front ? k + 1 : n - 1 - k;
-        }
-        if (std::abs((near - origin).norm() - length) <= tolerance && k > 0) {
-          return from_front ? k : n - k;
-        }
-        // The point of this half-edge at that distance.
-        const Vec3 e = far - near;
-        if (const std::optional<double> exit = sphere_exit(near, e, origin, length)) {
-          const double s = std::clamp(*exit, 0.0, 1.0);
-          // Parameter from the half-edge's own start.
-          tip_splits.push_back({h, from_front ? s : 1.0 - s, near + s * e});
-        }
-        return std::nullopt;
-      }
-      return std::nullopt;
-    };
-    // Takes the stretch from the back of `a` (origin_a: the point its
-    // distance is measured from) or the front of `b`, the longer first.
-    // Returns the stretch as a wale run, or nullopt.
-    auto take = [&](Chain& a, Chain& b, const Vec3& origin_a, const Vec3& origin_b,
-                    bool& from_b) -> std::optional<Run> {
-      const bool prefer_b = b.runs.front().length >= a.runs.back().length;
-      for (int attempt = 0; attempt < 2; ++attempt) {
-        const bool use_b = (attempt == 0) == prefer_b;
-        if (use_b) {
-          if (auto cut = cut_at(origin_b, b.runs.front(), true)) {
-            auto [near, far] = split_run(b.runs.front(), *cut, slices);
-            b.runs.front() = std::move(far);
-            near.side = Side::Wale;
-            from_b = true;
-            return near;
-          }
-        } else if (auto cut = cut_at(origin_a, a.runs.back(), false)) {
-          auto [far, near] = split_run(a.runs.back(), *cut, slices);
-          a.runs.back() = std::move(far);
-          near.side = Side::Wale;
-          from_b = false;
-          return near;
-        }
-      }
-      return std::nullopt;
-    };
-    auto point = [&](int vertex) { return slices.position(vertex); };
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      Chain& c = out[i];
-      if (c.side != Side::Wale) {
-        // A point where this chain meets the next course chain.
-        Chain& b = out[(i + 1) % out.size()];
-        if (&c == &b || b.side == Side::Wale || b.side == c.side) continue;
-        const Vec3 tip = point(slices.from(b.runs.front().halfedges.front()));
-        bool from_b = false;
-        std::optional<Run> stretch = take(c, b, tip, tip, from_b);
-        if (!stretch) continue;
-        Chain wale_side;
-        wale_side.side = Side::Wale;
-        wale_side.runs.push_back(std::move(*stretch));
-        ++stats.tip_sides;
-        out.insert(out.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::move(wale_side));
-        ++i;
-        continue;
-      }
-      // A short wale side on the boundary between two course chains.
-      Chain& a = out[(i + out.size() - 1) % out.size()];
-      Chain& b = out[(i + 1) % out.size()];
-      if (&a == &b || a.side == Side::Wale || b.side == Side::Wale) continue;
-      if (!boundary_only(c)) continue;
-      const Vec3 start = point(slices.from(c.runs.front().halfedges.front()));
-      const Vec3 end = point(slices.to(c.runs.back().halfedges.back()));
-      if ((end - start).norm() >= length - tolerance) continue;
-      bool from_b = false;
-      std::optional<Run> stretch = take(a, b, end, start, from_b);
-      if (!stretch) continue;
-      if (from_b) {
-        c.runs.push_back(std::move(*stretch));
-      } else {
-        c.runs.insert(c.runs.begin(), std::move(*stretch));
-      }
-      ++stats.tip_sides;
-    }
   }
 
   std::int32_t wale_arc(const Chain& chain) const {
@@ -1613,15 +1295,14 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   // than kLopsidedRatio, are held on a level and the rows are made again.
   if (params.saddle_wales > 0) {
     std::set<int> roots;
-    Builder probe{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+    ChainMaker probe(slices, tris, params);
     for (const auto& [root, strip_loops] : strips.loops) {
       if (strip_loops.size() != 1) continue;
       int lows = 0;
       int highs = 0;
       double bottom = 0;
       double top = 0;
-      for (const Chain& c :
-           probe.chains(probe.loop_runs(strip_loops.front(), slices.band[at(root)], t, tris))) {
+      for (const Chain& c : probe.chains(strip_loops.front(), slices.band[at(root)])) {
         lows += c.side == Side::Low ? 1 : 0;
         highs += c.side == Side::High ? 1 : 0;
         if (c.side != Side::Wale) (c.side == Side::Low ? bottom : top) += chain_length(c);
@@ -1649,20 +1330,19 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   if (params.tip_side_wales > 0) {
     std::vector<HalfedgeSplit> splits;
     {
-      Builder probe{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+      ChainMaker probe(slices, tris, params);
       for (const auto& [root, strip_loops] : strips.loops) {
-        if (strip_loops.size() == 1) {
-          probe.chains(probe.loop_runs(strip_loops.front(), slices.band[at(root)], t, tris));
-        }
+        if (strip_loops.size() == 1) probe.chains(strip_loops.front(), slices.band[at(root)]);
       }
-      splits = std::move(probe.tip_splits);
+      splits = probe.tip_splits();
     }
     if (!splits.empty()) {
       slices = split_halfedges(slices, std::move(splits));
       strips = find_strips(slices);
     }
   }
-  Builder builder{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  Builder builder{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  ChainMaker chain_maker(slices, tris, params);
   builder.mesh.course_mm = params.course_mm;
   builder.mesh.wale_mm = params.wale_mm;
   // Strips in row order, so level curves are sampled from below first.
@@ -1676,7 +1356,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     const auto& [band, root] = order[i];
     const std::vector<std::vector<int>>& strip_loops = strips.loops[root];
     if (strip_loops.size() == 1) {
-      strip_chains[i] = builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris));
+      strip_chains[i] = chain_maker.chains(strip_loops.front(), band);
     }
   }
   for (auto it = strip_chains.rbegin(); it != strip_chains.rend(); ++it) builder.plan_minimums(*it);
@@ -1701,7 +1381,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   result.stats.invalid_faces = builder.stats.invalid_faces;
   result.stats.boundary_sides = builder.stats.boundary_sides;
   result.stats.sides_split_below = builder.stats.sides_split_below;
-  result.stats.tip_sides = builder.stats.tip_sides;
+  result.stats.tip_sides = chain_maker.tip_sides();
   result.mesh = std::move(builder.mesh);
   const auto relax_start = std::chrono::steady_clock::now();
   result.stats.relax_sweeps = relax_positions(result.mesh, disc, params.relax_sweeps);

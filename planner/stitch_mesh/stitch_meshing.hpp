@@ -189,4 +189,87 @@ struct Strips {
 };
 Strips find_strips(const BandSlices& slices);
 
+// ---------------------------------------------------------------------------
+// Step 3, chains (chains.cpp).
+
+// Which way a stretch of a strip's boundary runs: along its bottom (course-in
+// sides), along its top (course-out sides), or up a row's end (wale sides).
+enum class Side : std::uint8_t { Low, High, Wale };
+
+// Consecutive half-edges of a strip's boundary loop of one side and kind.
+struct Run {
+  Side side = Side::Wale;
+  bool level = false;          // a level curve (shared with the next strip), not the disc boundary
+  std::vector<int> halfedges;  // in loop order
+  double length = 0;
+};
+
+// Consecutive runs of one side.
+struct Chain {
+  Side side = Side::Wale;
+  std::vector<Run> runs;
+};
+
+double chain_length(const Chain& chain);
+
+// A chain of disc boundary only (no level curve).
+bool boundary_only(const Chain& chain);
+
+// Neighbouring boundary runs of a chain are one stretch of boundary: join
+// them into one run (level-curve runs stay apart).
+void join_boundary_runs(Chain& chain);
+
+// Makes the chains of strips' boundary loops (§6.2): level curves below are
+// bottom chains and above top chains; the disc boundary is classified by
+// the angle between its outward normal and grad t (facing down: bottom, a
+// cast-on; facing up: top, a bind-off; along the rows' ends: a wale side).
+// Steps of a jagged cut and folds of the boundary against the rows give way
+// to their neighbours, and rows that end in a point on an oblique boundary
+// end in a wale side instead (end_rows_in_wale_sides).
+class ChainMaker {
+ public:
+  ChainMaker(const BandSlices& slices, const std::vector<Triangle>& tris,
+             const StitchMeshParams& params)
+      : slices_(slices), tris_(tris), params_(params) {}
+
+  // The chains of one boundary loop of a strip in `band`, in loop order.
+  std::vector<Chain> chains(const std::vector<int>& loop, int band);
+
+  // Row ends made or lengthened by the calls so far.
+  int tip_sides() const { return tip_sides_; }
+  // Points to add on boundary half-edges so that the row ends found so far
+  // can end at a slice vertex (split_halfedges; the chains are then made
+  // again).
+  const std::vector<HalfedgeSplit>& tip_splits() const { return tip_splits_; }
+
+ private:
+  // The loop's half-edges grouped into runs of one side and kind.
+  std::vector<Run> loop_runs(const std::vector<int>& loop, int band) const;
+  // Wale chains between chains of one kind, jagged steps and folds against
+  // the rows give way until each kind is one chain where the loop allows.
+  void settle_kinds(std::vector<Chain>& out) const;
+  // Short boundary runs at the ends of a course chain beside a wale side
+  // join the wale side: a wale edge, not a sliver course edge.
+  void short_ends_to_wale_sides(std::vector<Chain>& out) const;
+  void end_rows_in_wale_sides(std::vector<Chain>& out);
+  // Where boundary run r, walked forward from its front or backward from its
+  // back, is row_end_length() from `origin` in a straight line: the number of
+  // half-edges before that vertex, or nullopt (a split point to add is
+  // recorded in tip_splits_ when the distance is reached inside a half-edge).
+  std::optional<std::size_t> cut_at(const Vec3& origin, const Run& r, bool from_front);
+  // Takes the stretch from the back of `a` (origin_a: the point its
+  // distance is measured from) or the front of `b`, the longer first.
+  // Returns the stretch as a wale run, or nullopt.
+  std::optional<Run> take_stretch(Chain& a, Chain& b, const Vec3& origin_a, const Vec3& origin_b,
+                                  bool& from_b);
+  double row_end_length() const { return params_.tip_side_wales * params_.wale_mm; }
+  double row_end_tolerance() const { return 0.02 * params_.wale_mm; }
+
+  const BandSlices& slices_;
+  const std::vector<Triangle>& tris_;
+  const StitchMeshParams& params_;
+  int tip_sides_ = 0;
+  std::vector<HalfedgeSplit> tip_splits_;
+};
+
 }  // namespace planner::stitch_meshing
