@@ -6,13 +6,12 @@
 #include "planner/schedule/schedule.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <map>
-#include <mutex>
 #include <numeric>
 #include <random>
-#include <thread>
+
+#include "simulators/cloth/parallel.hpp"
 
 namespace planner {
 namespace {
@@ -154,68 +153,70 @@ int improve_order(const Schedule& s, std::vector<int>& order, int max_shift, int
   return static_cast<int>(cuts.size());
 }
 
-void choose_order(Schedule& s, const ScheduleParams& params) {
-  const auto start = std::chrono::steady_clock::now();
-  const bool by_time = params.time_budget_s > 0;
-  const std::uint64_t limit = by_time ? std::numeric_limits<std::uint64_t>::max()
-                                      : static_cast<std::uint64_t>(std::max(1, params.trials));
-  unsigned threads = params.threads > 0 ? static_cast<unsigned>(params.threads)
-                                        : std::max(1u, std::thread::hardware_concurrency());
-  std::atomic<std::uint64_t> next{0};
-  std::mutex mutex;
+namespace {
+
+// §7.3: random order `t`, simulated with held loops kept where they were
+// made and (when they may be) with them set aside.
+TrialResult run_trial(const Schedule& s, const ScheduleParams& params, std::uint64_t t) {
+  const auto order = random_patch_order(s, params.seed, t);
+  const auto cuts = [&](int max_aside) {
+    return static_cast<int>(
+        simulate_order(s, order, params.max_patch_shift, nullptr, max_aside).size());
+  };
+  TrialResult result;
+  result.trial = t;
+  result.cuts_in_place = cuts(0);
+  result.cuts_aside = params.max_aside > 0 ? cuts(params.max_aside) : result.cuts_in_place;
+  result.cuts = std::min(result.cuts_in_place, result.cuts_aside);
+  return result;
+}
+
+// Trials 0..N-1, in parallel, each into its own slot: params.trials of
+// them or, with a time budget, rounds of one trial per thread until the
+// budget is spent (at least one round).
+std::vector<TrialResult> run_trials(const Schedule& s, const ScheduleParams& params) {
+  const int threads = cloth::resolve_threads(params.threads);
   std::vector<TrialResult> results;
-  auto worker = [&] {
-    std::vector<TrialResult> mine;
-    for (;;) {
-      if (by_time) {
-        const double elapsed =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        // At least one order, whatever the budget.
-        if (elapsed >= params.time_budget_s && next.load() > 0) break;
-      }
-      const std::uint64_t t = next.fetch_add(1);
-      if (t >= limit) break;
-      const auto order = random_patch_order(s, params.seed, t);
-      const auto cuts = [&](int max_aside) {
-        return static_cast<int>(
-            simulate_order(s, order, params.max_patch_shift, nullptr, max_aside).size());
-      };
-      TrialResult result;
-      result.trial = t;
-      result.cuts_in_place = cuts(0);
-      result.cuts_aside = params.max_aside > 0 ? cuts(params.max_aside) : result.cuts_in_place;
-      result.cuts = std::min(result.cuts_in_place, result.cuts_aside);
-      mine.push_back(result);
-    }
-    std::lock_guard<std::mutex> lock(mutex);
-    results.insert(results.end(), mine.begin(), mine.end());
+  const auto run = [&](int count) {
+    const std::size_t first = results.size();
+    results.resize(first + static_cast<std::size_t>(count));
+    cloth::parallel_tasks(count, threads, [&](int i) {
+      const std::size_t t = first + static_cast<std::size_t>(i);
+      results[t] = run_trial(s, params, t);
+    });
   };
-  std::vector<std::thread> pool;
-  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
-  std::sort(results.begin(), results.end(),
-            [](const TrialResult& a, const TrialResult& b) { return a.trial < b.trial; });
-  s.trials = results;
-  const auto best =
-      std::min_element(results.begin(), results.end(),
-                       [](const TrialResult& a, const TrialResult& b) { return a.cuts < b.cuts; });
-  s.best_trial = best->trial;
-  bool aside = best->cuts_aside < best->cuts_in_place;
-  s.patch_order = random_patch_order(s, params.seed, best->trial);
-  s.random_cuts = best->cuts;
-  // Local search (improve_order) from the best random orders, in parallel;
-  // the result depends only on the ranking, not on the threads. The
-  // params.improve best orders with held loops in place are refined so,
-  // then (when loops may be set aside) the params.improve best with them
-  // set aside; the first job of the fewest cuts wins, so where setting
-  // aside does not help the schedule is the one without it.
+  if (params.time_budget_s <= 0) {
+    run(std::max(1, params.trials));
+    return results;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed_s = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  do {
+    run(threads);
+  } while (elapsed_s() < params.time_budget_s);
+  return results;
+}
+
+// One start of improve_order: a random order, refined with held loops in
+// place or set aside.
+struct Refinement {
+  std::uint64_t trial = 0;
+  bool aside = false;
+  std::vector<int> order;
+  int cuts = 0;
+};
+
+// Local search (improve_order) from the best random orders, in parallel;
+// the result depends only on the ranking, not on the threads. The
+// params.improve best orders with held loops in place are refined so, then
+// (when loops may be set aside) the params.improve best with them set
+// aside, in that order.
+std::vector<Refinement> refine_best(const Schedule& s, const ScheduleParams& params,
+                                    const std::vector<TrialResult>& results) {
   const std::size_t keep = static_cast<std::size_t>(std::max(0, params.improve));
-  struct Job {
-    std::uint64_t trial = 0;
-    bool aside = false;
-  };
-  std::vector<Job> jobs;
+  std::vector<Refinement> jobs;
   for (const bool set_aside : {false, true}) {
     if (set_aside && params.max_aside == 0) continue;
     std::vector<TrialResult> ranked = results;
@@ -223,38 +224,25 @@ void choose_order(Schedule& s, const ScheduleParams& params) {
       return set_aside ? a.cuts_aside < b.cuts_aside : a.cuts_in_place < b.cuts_in_place;
     });
     for (std::size_t i = 0; i < std::min(keep, ranked.size()); ++i)
-      jobs.push_back({ranked[i].trial, set_aside});
+      jobs.push_back({ranked[i].trial, set_aside, {}, 0});
   }
-  std::vector<std::vector<int>> improved(jobs.size());
-  std::vector<int> improved_cuts(jobs.size(), 0);
-  std::atomic<std::size_t> next_order{0};
-  auto refine = [&] {
-    for (std::size_t j = next_order.fetch_add(1); j < jobs.size(); j = next_order.fetch_add(1)) {
-      improved[j] = random_patch_order(s, params.seed, jobs[j].trial);
-      improved_cuts[j] = improve_order(s, improved[j], params.max_patch_shift, params.improve_moves,
-                                       jobs[j].aside ? params.max_aside : 0);
-    }
-  };
-  pool.clear();
-  for (unsigned i = 1; i < threads && i < jobs.size(); ++i) pool.emplace_back(refine);
-  refine();
-  for (auto& th : pool) th.join();
-  // The fewest cuts (ties: the earlier job). The first start of each kind
-  // is the best random order of that kind, which the search never makes
-  // worse.
-  if (!jobs.empty()) {
-    const auto j = static_cast<std::size_t>(
-        std::min_element(improved_cuts.begin(), improved_cuts.end()) - improved_cuts.begin());
-    s.patch_order = std::move(improved[j]);
-    s.best_trial = jobs[j].trial;
-    aside = jobs[j].aside;
-  }
+  cloth::parallel_tasks(static_cast<int>(jobs.size()), params.threads, [&](int i) {
+    Refinement& job = jobs[static_cast<std::size_t>(i)];
+    job.order = random_patch_order(s, params.seed, job.trial);
+    job.cuts = improve_order(s, job.order, params.max_patch_shift, params.improve_moves,
+                             job.aside ? params.max_aside : 0);
+  });
+  return jobs;
+}
+
+// The kept order's cuts, patch shifts and held loops set aside; its patch
+// shifts become the needles the emitter uses.
+void keep_order(Schedule& s, const ScheduleParams& params, bool aside) {
   std::vector<int> shift;
   s.cut_rows = simulate_order(s, s.patch_order, params.max_patch_shift, &shift,
                               aside ? params.max_aside : 0, &s.aside_moves);
   s.cuts = static_cast<int>(s.cut_rows.size());
   s.patch_shift = shift;
-  // The kept order's patch shifts become the needles the emitter uses.
   for (CourseEdge& e : s.edges) {
     const int f = e.lower != kNone ? e.lower : e.upper;
     e.needle += shift[static_cast<std::size_t>(
@@ -266,6 +254,33 @@ void choose_order(Schedule& s, const ScheduleParams& params) {
                                    s.face_row[static_cast<std::size_t>(e.upper)]};
     e.cut = std::find(s.cut_rows.begin(), s.cut_rows.end(), rows) != s.cut_rows.end();
   }
+}
+
+}  // namespace
+
+void choose_order(Schedule& s, const ScheduleParams& params) {
+  s.trials = run_trials(s, params);
+  const auto best =
+      std::min_element(s.trials.begin(), s.trials.end(),
+                       [](const TrialResult& a, const TrialResult& b) { return a.cuts < b.cuts; });
+  s.best_trial = best->trial;
+  bool aside = best->cuts_aside < best->cuts_in_place;
+  s.patch_order = random_patch_order(s, params.seed, best->trial);
+  s.random_cuts = best->cuts;
+  // The fewest cuts (ties: the earlier start). The first start of each
+  // kind is the best random order of that kind, which the search never
+  // makes worse; so where setting aside does not help the schedule is the
+  // one without it.
+  std::vector<Refinement> refined = refine_best(s, params, s.trials);
+  if (!refined.empty()) {
+    const auto kept =
+        std::min_element(refined.begin(), refined.end(),
+                         [](const Refinement& a, const Refinement& b) { return a.cuts < b.cuts; });
+    s.patch_order = std::move(kept->order);
+    s.best_trial = kept->trial;
+    aside = kept->aside;
+  }
+  keep_order(s, params, aside);
 }
 
 void make_pieces(Schedule& s) {
