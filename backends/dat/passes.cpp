@@ -5,10 +5,13 @@
 #include <istream>
 #include <ostream>
 
+#include "knitout/writer.hpp"
+
 namespace dat {
 
 using knitout::Bed;
 using knitout::Direction;
+using knitout::format_number;
 using knitout::Instruction;
 using knitout::Op;
 
@@ -96,15 +99,6 @@ bool is_plain_decimal(std::string_view text) {
 bool is_digits(std::string_view text) {
   return !text.empty() &&
          std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
-std::string format_number(double value) {
-  if (value == std::floor(value) && std::abs(value) < 1e15) {
-    return std::to_string(static_cast<long long>(value));
-  }
-  std::string text = std::to_string(value);
-  while (!text.empty() && text.back() == '0') text.pop_back();
-  return text;
 }
 
 // Rejected at the `rack` already: far beyond any machine, and slot numbers

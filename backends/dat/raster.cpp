@@ -7,6 +7,7 @@
 #include <string>
 
 #include "backends/dat/reader.hpp"
+#include "knitout/writer.hpp"
 
 namespace dat {
 
@@ -18,13 +19,6 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
   std::int64_t q = a / b;
   if ((a % b != 0) && ((a < 0) != (b < 0))) --q;
   return q;
-}
-
-std::string format_racking(double racking) {
-  std::string text = std::to_string(racking);
-  while (!text.empty() && text.back() == '0') text.pop_back();
-  if (!text.empty() && text.back() == '.') text.pop_back();
-  return text;
 }
 
 // Option values are bytes; the reference stores them into a byte array,
@@ -195,8 +189,8 @@ bool draw(const PassList& list, knitout::DiagnosticSink& sink,
       if (front == 0) {
         sink.error(list.source, pass.line, 0, "D027",
                    pass.has_return_racking
-                       ? "split-via-sliders at racking " + format_racking(pass.racking) +
-                             " returned at racking " + format_racking(pass.return_racking) +
+                       ? "split-via-sliders at racking " + knitout::format_number(pass.racking) +
+                             " returned at racking " + knitout::format_number(pass.return_racking) +
                              ": the return must be 1, 2 or 4 needles away"
                        : std::string("split-via-sliders pass whose loops are never returned "
                                      "from the sliders (xfer them back in the next passes)"));
@@ -241,9 +235,9 @@ bool draw(const PassList& list, knitout::DiagnosticSink& sink,
     if (pass.type == PassType::AMiss) options.left[12] = 20;
 
     if (std::abs(pass.racking) > 8) {
-      sink.error(
-          list.source, pass.line, 0, "D021",
-          "racking " + format_racking(pass.racking) + " is beyond the machine's range -8..8");
+      sink.error(list.source, pass.line, 0, "D021",
+                 "racking " + knitout::format_number(pass.racking) +
+                     " is beyond the machine's range -8..8");
       return false;
     }
     if (pass.racking >= 1.0) {
