@@ -25,6 +25,7 @@
 #include "knitout/output_file.hpp"
 #include "planner/common/index.hpp"
 #include "planner/common/union_find.hpp"
+#include "planner/render/png.hpp"
 #include "planner/schedule/piece_layout.hpp"
 #include "planner/schedule/schedule.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
@@ -1318,15 +1319,7 @@ std::string draw_3d(const Model& m, const std::optional<PolygonMesh>& wearer,
   key(250, {0.96, 0.86, 0.58}, "garment");
   if (wearer) key(390, {0.62, 0.68, 0.78}, "wearer");
   cairo_destroy(cr);
-  const std::string failure = knitout::write_file_atomically(png_path, [&](std::ostream& out) {
-    auto write = [](void* closure, const unsigned char* bytes, unsigned int length) {
-      auto* o = static_cast<std::ostream*>(closure);
-      o->write(reinterpret_cast<const char*>(bytes), static_cast<std::streamsize>(length));
-      return *o ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
-    };
-    if (cairo_surface_write_to_png_stream(surface, write, &out) != CAIRO_STATUS_SUCCESS)
-      throw std::runtime_error("cairo could not encode the PNG");
-  });
+  const std::string failure = render::write_png_file(surface, png_path);
   cairo_surface_destroy(surface);
   return failure.empty() ? "" : "error: [A006] " + failure;
 }
@@ -1441,10 +1434,7 @@ std::string write_assembly_page_png(const fs::path& plan_dir, int page, const st
   CairoCanvas canvas(cr, page - 1);
   draw_pages(canvas, g.model, g.lines, g.places, g.table_pages, g.piece_pages, g.title);
   cairo_destroy(cr);
-  const std::string failure = knitout::write_file_atomically(png_path, [&](std::ostream& out) {
-    if (cairo_surface_write_to_png_stream(surface, write_to_stream, &out) != CAIRO_STATUS_SUCCESS)
-      throw std::runtime_error("cairo could not encode the PNG");
-  });
+  const std::string failure = render::write_png_file(surface, png_path);
   cairo_surface_destroy(surface);
   return failure.empty() ? "" : "error: [A006] " + failure;
 }

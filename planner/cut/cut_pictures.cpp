@@ -4,29 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ostream>
 #include <unordered_map>
 
-#include "knitout/output_file.hpp"
 #include "planner/common/index.hpp"
+#include "planner/render/png.hpp"
 
 namespace planner {
 
 namespace {
-
-cairo_status_t write_to_stream(void* closure, const unsigned char* data, unsigned int length) {
-  auto* out = static_cast<std::ostream*>(closure);
-  out->write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(length));
-  return *out ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
-}
-
-std::string save(cairo_surface_t* surface, const std::string& path) {
-  return knitout::write_file_atomically(path, [&](std::ostream& out) {
-    if (cairo_surface_write_to_png_stream(surface, write_to_stream, &out) != CAIRO_STATUS_SUCCESS) {
-      throw std::runtime_error("cairo could not encode the PNG");
-    }
-  });
-}
 
 struct View {
   double yaw_deg;
@@ -137,7 +122,7 @@ std::string draw_cuts_3d(const CutMesh& cut, const std::string& png_path, int pa
   cairo_stroke(cr);
   cairo_destroy(cr);
   cairo_surface_flush(surface);
-  std::string failure = save(surface, png_path);
+  std::string failure = render::write_png_file(surface, png_path);
   cairo_surface_destroy(surface);
   return failure;
 }
@@ -210,7 +195,7 @@ std::string draw_layout_2d(const CutMesh& cut, const std::string& png_path, int 
   }
   cairo_destroy(cr);
   cairo_surface_flush(surface);
-  std::string failure = save(surface, png_path);
+  std::string failure = render::write_png_file(surface, png_path);
   cairo_surface_destroy(surface);
   return failure;
 }

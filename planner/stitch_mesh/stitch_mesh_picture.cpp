@@ -7,25 +7,16 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <ostream>
-#include <sstream>
-#include <stdexcept>
 #include <utility>
 
-#include "knitout/output_file.hpp"
 #include "planner/common/index.hpp"
+#include "planner/render/png.hpp"
 
 namespace planner {
 
 using Vec3 = Eigen::Vector3d;
 
 namespace {
-
-cairo_status_t write_to_stream(void* closure, const unsigned char* data, unsigned int length) {
-  auto* out = static_cast<std::ostream*>(closure);
-  out->write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(length));
-  return *out ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
-}
 
 std::array<double, 3> type_colour(FaceType type) {
   switch (type) {
@@ -165,11 +156,7 @@ std::string draw_stitch_mesh(const StitchMesh& mesh, const std::string& png_path
   cairo_show_text(cr, "cut (edge of the sheet)");
   cairo_destroy(cr);
   cairo_surface_flush(surface);
-  const std::string failure = knitout::write_file_atomically(png_path, [&](std::ostream& out) {
-    if (cairo_surface_write_to_png_stream(surface, write_to_stream, &out) != CAIRO_STATUS_SUCCESS) {
-      throw std::runtime_error("cairo could not encode the PNG");
-    }
-  });
+  const std::string failure = render::write_png_file(surface, png_path);
   cairo_surface_destroy(surface);
   return failure;
 }

@@ -9,6 +9,8 @@
 #include <ostream>
 #include <utility>
 
+#include "planner/render/png.hpp"
+
 namespace planner {
 
 // A 3/4 view of the garment with its arcs coloured: green sewn, red laced,
@@ -106,14 +108,8 @@ void draw_wearability(std::ostream& out, const CoverMesh& mesh,
   cairo_move_to(cr, x, kSize - 23);
   cairo_show_text(cr, "dashed: on the far side");
   cairo_surface_flush(surface);
-  cairo_surface_write_to_png_stream(
-      surface,
-      [](void* closure, const unsigned char* data, unsigned int length) {
-        static_cast<std::ostream*>(closure)->write(reinterpret_cast<const char*>(data), length);
-        return CAIRO_STATUS_SUCCESS;
-      },
-      &out);
   cairo_destroy(cr);
+  render::write_png(surface, out);
   cairo_surface_destroy(surface);
 }
 
