@@ -2,15 +2,22 @@
 // assembly-3d.png): one renderer for all of them. A scene of polygons and
 // lines is seen orthographically from a list of views, by default the four
 // sides (front, right, back, left, each from 20 degrees above) in a 2 x 2
-// grid of square panels.
+// grid of square panels. The pictures differ only in their scenes (colours,
+// line styles, light) and options, not in code.
 //
-// Drawing is vector drawing with Cairo, antialiased, in painter's order per
-// panel: faces far to near (by the mean depth of their corners), every face
-// filled, shaded by a fixed light, then outlined, then its own marked sides
-// stroked, so that nearer faces hide them; the overlay lines come last, over
-// every face. No depth buffer: surfaces that cross or lie within a fraction of
-// a face of each other may be drawn in the wrong order; `Face::depth_bias`
-// settles the common case of a garment lying just over its wearer.
+// What hides what is decided one of two ways:
+// - painter's order (the default): vector drawing with Cairo, antialiased;
+//   per panel the faces far to near (by the mean depth of their corners),
+//   every face filled, then outlined, then its own marked sides stroked, so
+//   that nearer faces hide them; the overlay lines last, over every face.
+//   Right for one surface; wrong where surfaces cross or lie within a face's
+//   size of each other.
+// - a depth buffer (Options::depth_buffer): every face rasterised pixel by
+//   pixel as a fan of triangles, each shaded by its own normal, then the
+//   marked sides as round dots along them, all depth-tested, without
+//   antialiasing or outlines. Right for a garment worn over its wearer (or
+//   over itself), where painter's order fails; `depth_bias` lifts the garment
+//   and its seams just in front of the wearer.
 #pragma once
 
 #include <cairo.h>
@@ -48,8 +55,9 @@ struct LineStyle {
   double width = 1;
   double back_width = 1;
   bool round_caps = true;   // else butt caps
-  bool round_joins = true;  // else mitred joins (they change Cairo's strokes even of one segment)
+  bool round_joins = true;  // else mitred joins
   double back_dash = 0;     // overlay lines at the back: dashes this long (0: solid)
+  double depth_bias = 0;    // depth buffer only: towards the viewer, scene units
 };
 
 // How a face is filled: `front` or `back` (the side the viewer sees) times the
@@ -67,7 +75,8 @@ struct Scene {
     // Per side (from corner i to corner i + 1) a style in `line_styles`, or
     // -1; empty when no side is stroked.
     std::vector<int> sides;
-    // Added to the face's depth when sorting (scene units, towards the viewer).
+    // Towards the viewer (scene units): added to the face's depth when
+    // sorting, or to every pixel's depth in the depth buffer.
     double depth_bias = 0;
   };
   struct Segment {
@@ -108,11 +117,20 @@ struct Options {
   int columns = 2;
   int panel_px = 600;
   Fit fit = Fit::Centroid;
-  double margin_px = 40;     // Fit::ViewBox only
-  double bottom_px = 60;     // Fit::ViewBox only
-  int strip_px = 0;          // a white strip below the panels (a legend goes there)
-  bool panel_lines = false;  // thin grey lines between the panels
+  double margin_px = 40;      // Fit::ViewBox only
+  double bottom_px = 60;      // Fit::ViewBox only
+  int strip_px = 0;           // a white strip below the panels (a legend goes there)
+  bool panel_lines = false;   // thin grey lines between the panels
+  bool depth_buffer = false;  // decide visibility per pixel (see the top of this file)
 };
+
+// The sphere Fit::Centroid or Fit::Box fits into every panel (for Fit::ViewBox:
+// the origin and a radius of 1e-9).
+struct Sphere {
+  Vec3 centre = Vec3::Zero();
+  double radius = 1e-9;
+};
+Sphere fit_sphere(const std::vector<Vec3>& positions, Fit fit);
 
 // A white picture of the panels; draw() draws a scene into them. cairo()
 // draws anything else (a legend); the PNG is written at the end.
@@ -135,7 +153,7 @@ class FourViews {
   std::string write_png_file(const std::string& path) const;
 
  private:
-  void draw_panel(const Scene& scene, int panel, const Vec3& centre, double radius);
+  void draw_panel(const Scene& scene, int panel, const Sphere& sphere);
 
   Options options_;
   int rows_ = 1;
