@@ -4,12 +4,11 @@
 #include <iterator>
 #include <sstream>
 
+#include "backends/dat/format.hpp"
 #include "knitout/parser.hpp"
 
 namespace devices {
 namespace {
-
-constexpr std::size_t kDatHeaderBytes = 0x600;
 
 std::string lower_extension(const std::string& name) {
   std::string ext = std::filesystem::path(name).extension().string();
@@ -17,48 +16,23 @@ std::string lower_extension(const std::string& name) {
   return ext;
 }
 
+// Row 0 is the header and palette, then one row per raster row, as the
+// DAT backend's reader finds them; its first error is the reason to refuse.
 Result<std::vector<std::size_t>> split_dat(std::span<const std::uint8_t> bytes) {
-  if (bytes.size() < kDatHeaderBytes) {
+  knitout::DiagnosticSink sink;
+  const std::optional<dat::RunRows> rows = dat::scan_runs(bytes, "DAT", sink);
+  if (!rows) {
+    const knitout::Diagnostic& d = sink.diagnostics().front();
+    return make_error(ErrorClass::InvalidArgument, "[" + d.code + "] " + d.message);
+  }
+  // The rows must give the file back byte for byte: nothing may follow them.
+  if (rows->row_offsets.back() != bytes.size()) {
     return make_error(ErrorClass::InvalidArgument,
-                      "DAT shorter than its 0x600-byte header and palette (" +
-                          std::to_string(bytes.size()) + " bytes)");
+                      "DAT has " + std::to_string(bytes.size() - rows->row_offsets.back()) +
+                          " bytes after its " + std::to_string(rows->height) + " raster rows");
   }
-  const auto u16 = [&](std::size_t at) {
-    return static_cast<unsigned>(bytes[at] | (bytes[at + 1] << 8));
-  };
-  const unsigned width = u16(4) - u16(0) + 1;
-  const unsigned height = u16(6) - u16(2) + 1;
-  if (u16(4) < u16(0) || u16(6) < u16(2)) {
-    return make_error(ErrorClass::InvalidArgument, "DAT header has x-max < x-min or y-max < y-min");
-  }
-  std::vector<std::size_t> offsets{0, kDatHeaderBytes};
-  std::size_t at = kDatHeaderBytes;
-  for (unsigned row = 0; row < height; ++row) {
-    unsigned filled = 0;
-    while (filled < width) {
-      if (at + 2 > bytes.size()) {
-        return make_error(ErrorClass::InvalidArgument,
-                          "DAT ends inside raster row " + std::to_string(row) + " of " +
-                              std::to_string(height) + " (offset " + std::to_string(at) + ")");
-      }
-      filled += bytes[at + 1];
-      at += 2;
-    }
-    if (filled != width) {
-      return make_error(ErrorClass::InvalidArgument,
-                        "DAT raster row " + std::to_string(row) + " runs to " +
-                            std::to_string(filled) + " pixels, past the width " +
-                            std::to_string(width) + " (offset " + std::to_string(at - 2) + ")");
-    }
-    // A zero-length pair right after a full row belongs to that row.
-    while (at + 2 <= bytes.size() && bytes[at + 1] == 0) at += 2;
-    offsets.push_back(at);
-  }
-  if (at != bytes.size()) {
-    return make_error(ErrorClass::InvalidArgument, "DAT has " + std::to_string(bytes.size() - at) +
-                                                       " bytes after its " +
-                                                       std::to_string(height) + " raster rows");
-  }
+  std::vector<std::size_t> offsets{0};
+  offsets.insert(offsets.end(), rows->row_offsets.begin(), rows->row_offsets.end());
   return offsets;
 }
 

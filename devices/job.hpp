@@ -4,8 +4,9 @@
 // What a row is:
 //  - DAT: row 0 is the 0x600-byte header and palette; row k >= 1 is the
 //    run-length pairs of raster row k-1 (the machine knits the raster one
-//    row at a time). A trailing zero-length pair (the encoder's 255-run quirk)
-//    stays with the row it follows.
+//    row at a time), as the DAT backend's reader finds them
+//    (dat::scan_runs). A trailing zero-length pair (the encoder's 255-run
+//    quirk) stays with the row it follows.
 //  - knitout: row 0 is everything up to the first instruction (magic line,
 //    headers, leading comments); then one row per carriage pass: a new row
 //    starts at a knit, tuck, split or miss whose direction differs from the

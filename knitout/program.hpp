@@ -82,6 +82,12 @@ std::string to_string(Needle needle);  // "f10", "bs-2"
 
 enum class Direction : std::uint8_t { None, Plus, Minus };
 char direction_char(Direction direction);  // '+', '-', or '?' for None
+// Plus for Minus, Minus for Plus, None for None.
+inline Direction opposite(Direction direction) {
+  if (direction == Direction::Minus) return Direction::Plus;
+  if (direction == Direction::Plus) return Direction::Minus;
+  return Direction::None;
+}
 
 using CarrierId = std::uint8_t;
 inline constexpr std::size_t kMaxCarriersPerInstruction = 15;

@@ -25,7 +25,9 @@ void append_instruction(std::string& out, const CarrierTable& carriers,
                         const Instruction& instruction, std::string_view comment,
                         std::string_view text);
 
-// Shortest decimal text that reads back as exactly `value` ("0.25", "-1").
+// Shortest decimal text that reads back as exactly `value` ("0.25", "-1"):
+// how a knitout number is written, in a program and wherever a message or
+// picture quotes one (the VM's, the DAT backend's).
 std::string format_number(double value);
 
 }  // namespace knitout

@@ -64,11 +64,11 @@ std::vector<std::uint8_t> encode(const Raster& raster) {
   return bytes;
 }
 
-Raster decode(std::span<const std::uint8_t> bytes, std::string_view source,
-              knitout::DiagnosticSink& sink) {
+std::optional<RunRows> scan_runs(std::span<const std::uint8_t> bytes, std::string_view source,
+                                 knitout::DiagnosticSink& sink) {
   auto fail = [&](std::string_view code, std::string message) {
     sink.error(source, 0, 0, code, std::move(message));
-    return Raster{};
+    return std::nullopt;
   };
   if (bytes.size() < kDataOffset) {
     return fail("D040", "truncated DAT: " + std::to_string(bytes.size()) +
@@ -84,57 +84,77 @@ Raster decode(std::span<const std::uint8_t> bytes, std::string_view source,
                             std::to_string(x_max) + ", y " + std::to_string(y_min) + ".." +
                             std::to_string(y_max) + " is an empty raster");
   }
-  Raster raster;
-  raster.width = static_cast<int>(x_max - x_min + 1);
-  raster.height = static_cast<int>(y_max - y_min + 1);
-  std::copy(bytes.begin() + kPaletteOffset, bytes.begin() + kPaletteOffset + kPaletteBytes,
-            raster.palette.begin());
-
+  RunRows rows;
+  rows.width = static_cast<int>(x_max - x_min + 1);
+  rows.height = static_cast<int>(y_max - y_min + 1);
   const std::span<const std::uint8_t> data = bytes.subspan(kDataOffset);
   if (data.size() % 2 != 0) {
     return fail("D043", "truncated DAT: run-length data has an odd number of bytes (" +
                             std::to_string(data.size()) + "), the last pair is cut");
   }
   const std::uint64_t pixels =
-      static_cast<std::uint64_t>(raster.width) * static_cast<std::uint64_t>(raster.height);
+      static_cast<std::uint64_t>(rows.width) * static_cast<std::uint64_t>(rows.height);
   // Each pair covers at most 255 pixels: a raster the data cannot fill is
   // rejected before anything is allocated for it.
-  const std::uint64_t coverable = static_cast<std::uint64_t>(data.size() / 2) * kMaxRunLength;
+  const std::size_t pairs = data.size() / 2;
+  const std::uint64_t coverable = static_cast<std::uint64_t>(pairs) * kMaxRunLength;
   if (pixels > coverable) {
-    return fail("D043", "truncated DAT: " + std::to_string(data.size() / 2) +
-                            " run-length pairs cannot fill a " + std::to_string(raster.width) +
-                            " x " + std::to_string(raster.height) + " raster");
+    return fail("D043", "truncated DAT: " + std::to_string(pairs) +
+                            " run-length pairs cannot fill a " + std::to_string(rows.width) +
+                            " x " + std::to_string(rows.height) + " raster");
   }
-  raster.pixels.assign(static_cast<std::size_t>(pixels), 0);
-  std::size_t at = 0;  // next pixel
-  const auto width = static_cast<std::size_t>(raster.width);
+  rows.row_offsets.reserve(static_cast<std::size_t>(rows.height) + 1);
+  rows.row_offsets.push_back(kDataOffset);
+  std::uint64_t at = 0;  // next pixel
+  const auto width = static_cast<std::uint64_t>(rows.width);
   std::size_t pair = 0;
-  for (; pair < data.size() / 2 && at < pixels; ++pair) {
+  for (; pair < pairs && at < pixels; ++pair) {
     const std::uint8_t colour = data[2 * pair];
     const std::size_t length = data[2 * pair + 1];
-    const std::size_t row_end = (at / width + 1) * width;
+    const std::uint64_t row_end = (at / width + 1) * width;
     if (at + length > row_end) {
       return fail("D044", "corrupt DAT: the run at byte " + std::to_string(kDataOffset + 2 * pair) +
                               " (" + std::to_string(length) + " pixels of colour " +
                               std::to_string(colour) + ") crosses the end of row " +
                               std::to_string(at / width));
     }
-    std::fill_n(raster.pixels.begin() + static_cast<std::ptrdiff_t>(at), length, colour);
     at += length;
+    if (at == row_end) {
+      // Zero-length pairs are part of the format (see encode_row): those
+      // right after a row end it.
+      while (pair + 1 < pairs && data[2 * (pair + 1) + 1] == 0) ++pair;
+      rows.row_offsets.push_back(kDataOffset + 2 * (pair + 1));
+    }
   }
   if (at < pixels) {
     return fail("D043", "truncated DAT: the data ends in row " + std::to_string(at / width) +
-                            " of " + std::to_string(raster.height) + " (" +
+                            " of " + std::to_string(rows.height) + " (" +
                             std::to_string(pixels - at) + " pixels missing)");
   }
-  // Zero-length pairs are part of the format (see encode_row); only other
-  // bytes after the last row are extra.
-  while (pair < data.size() / 2 && data[2 * pair + 1] == 0) ++pair;
-  if (pair < data.size() / 2) {
+  if (pair < pairs) {
     sink.warning(source, 0, 0, "D045",
                  "DAT has " + std::to_string(data.size() - 2 * pair) +
                      " bytes after the last row (from byte " +
                      std::to_string(kDataOffset + 2 * pair) + "); they are ignored");
+  }
+  return rows;
+}
+
+Raster decode(std::span<const std::uint8_t> bytes, std::string_view source,
+              knitout::DiagnosticSink& sink) {
+  const std::optional<RunRows> rows = scan_runs(bytes, source, sink);
+  if (!rows) return Raster{};
+  Raster raster;
+  raster.width = rows->width;
+  raster.height = rows->height;
+  std::copy(bytes.begin() + kPaletteOffset, bytes.begin() + kPaletteOffset + kPaletteBytes,
+            raster.palette.begin());
+  raster.pixels.reserve(static_cast<std::size_t>(raster.width) *
+                        static_cast<std::size_t>(raster.height));
+  for (int y = 0; y < raster.height; ++y) {
+    const auto row = static_cast<std::size_t>(y);
+    for (std::size_t at = rows->row_offsets[row]; at < rows->row_offsets[row + 1]; at += 2)
+      raster.pixels.insert(raster.pixels.end(), bytes[at + 1], bytes[at]);
   }
   return raster;
 }

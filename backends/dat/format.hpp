@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -62,6 +63,24 @@ std::vector<std::uint8_t> file_prefix(int width, int height);
 
 // Whole-file encoding of a raster (header, its palette, rows).
 std::vector<std::uint8_t> encode(const Raster& raster);
+
+// Where each raster row's run-length pairs lie in DAT bytes.
+struct RunRows {
+  int width = 0;
+  int height = 0;
+  // Row y's (colour, length) pairs are bytes[row_offsets[y], row_offsets[y + 1]);
+  // row_offsets[0] is kDataOffset. A zero-length pair right after a full row
+  // (see encode_row) stays with that row; row_offsets.back() < bytes.size()
+  // when other bytes follow the last row.
+  std::vector<std::size_t> row_offsets;
+};
+
+// Checks DAT bytes as `decode` does and finds its rows, without drawing
+// them: the one reader of the run-length data (`decode` draws the rows it
+// finds; devices cut a job into them). Diagnostics and nullopt as for
+// `decode`; bytes after the last row are warning D045.
+std::optional<RunRows> scan_runs(std::span<const std::uint8_t> bytes, std::string_view source,
+                                 knitout::DiagnosticSink& sink);
 
 // Decodes DAT bytes. Problems (too short, bad dimensions, run-length data that
 // is truncated, odd, or crosses a row end) are error diagnostics D040-D045

@@ -5,12 +5,16 @@
 #include <istream>
 #include <ostream>
 
+#include "knitout/writer.hpp"
+
 namespace dat {
 
 using knitout::Bed;
 using knitout::Direction;
+using knitout::format_number;
 using knitout::Instruction;
 using knitout::Op;
+using knitout::opposite;
 
 namespace {
 
@@ -76,12 +80,6 @@ bool is_quarter_pitch(double racking) {
   return racking - std::floor(racking) != 0.0;
 }
 
-Direction opposite(Direction direction) {
-  if (direction == Direction::Minus) return Direction::Plus;
-  if (direction == Direction::Plus) return Direction::Minus;
-  return Direction::None;
-}
-
 // Digits, then an optional '.', then digits: the only numbers the reference
 // takes for Gauge.
 bool is_plain_decimal(std::string_view text) {
@@ -96,15 +94,6 @@ bool is_plain_decimal(std::string_view text) {
 bool is_digits(std::string_view text) {
   return !text.empty() &&
          std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
-std::string format_number(double value) {
-  if (value == std::floor(value) && std::abs(value) < 1e15) {
-    return std::to_string(static_cast<long long>(value));
-  }
-  std::string text = std::to_string(value);
-  while (!text.empty() && text.back() == '0') text.pop_back();
-  return text;
 }
 
 // Rejected at the `rack` already: far beyond any machine, and slot numbers
@@ -316,186 +305,20 @@ bool PassBuilder::add(const Instruction& in, const knitout::CarrierTable& table,
   switch (in.op) {
     case Op::Comment:
       return true;
-    case Op::Extension: {
-      switch (in.extension) {
-        case knitout::Extension::StitchNumber:
-          if (!reject_if_split_via_sliders(line, "x-stitch-number")) return false;
-          stitch_ = static_cast<std::int64_t>(in.value[0]);
-          return true;
-        case knitout::Extension::SpeedNumber:
-          if (!reject_if_split_via_sliders(line, "x-speed-number")) return false;
-          speed_ = static_cast<std::int64_t>(in.value[0]);
-          return true;
-        case knitout::Extension::PresserMode: {
-          if (!reject_if_split_via_sliders(line, "x-presser-mode")) return false;
-          const auto mode = static_cast<knitout::PresserMode>(static_cast<int>(in.value[0]));
-          presser_ = mode == knitout::PresserMode::On     ? Presser::On
-                     : mode == knitout::PresserMode::Auto ? Presser::Auto
-                                                          : Presser::Off;
-          return true;
-        }
-        default: {
-          std::string name(knitout::extension_name(in.extension));
-          if (in.extension == knitout::Extension::Unknown) {
-            name = std::string(text.substr(0, text.find(' ')));
-          }
-          if (std::find(warned_extensions_.begin(), warned_extensions_.end(), name) ==
-              warned_extensions_.end()) {
-            warned_extensions_.push_back(name);
-            warning(line, "D031",
-                    "extension '" + name +
-                        "' is not supported by the DAT backend and is ignored (reported once "
-                        "per file)");
-          }
-          return true;
-        }
-      }
-    }
+    case Op::Extension:
+      return add_extension(in, line, text);
     case Op::In:
-    case Op::Inhook: {
-      const std::string_view op = in.op == Op::In ? "in" : "inhook";
-      if (!reject_if_split_via_sliders(line, op)) return false;
-      for (std::size_t i = 0; i < cs.size; ++i) {
-        if (cs.ids[i] == 0) {
-          return error(line, "D010",
-                       "carrier '" + table.name(in.carriers[i]) +
-                           "' is not named in the Carriers header (1 to 10)");
-        }
-      }
-      for (std::uint8_t c : cs) {
-        if (carriers_[c].active) {
-          return error(line, "D011",
-                       "carrier " + std::to_string(c) + " is already in (brought in at line " +
-                           std::to_string(carriers_[c].in_line) + ")");
-        }
-      }
-      in_infos_.push_back({in.op == Op::Inhook, cs});
-      for (std::uint8_t c : cs) {
-        CarrierState& state = carriers_[c];
-        state = CarrierState{};
-        state.active = true;
-        state.in_info = static_cast<int>(in_infos_.size() - 1);
-        state.used_hook = in.op == Op::Inhook;
-        state.in_line = line;
-      }
-      return true;
-    }
-    case Op::Releasehook: {
-      if (!reject_if_split_via_sliders(line, "releasehook")) return false;
-      if (!hook_) {
-        return error(line, "D015",
-                     "releasehook " + instruction_carriers() +
-                         ": the hook holds nothing (it takes hold at the first stitch after "
-                         "inhook)");
-      }
-      if (!(hook_->second == cs)) {
-        return error(line, "D015",
-                     "releasehook " + instruction_carriers() + ": the hook holds carriers " +
-                         name_list(hook_->second));
-      }
-      for (std::uint8_t c : cs) carriers_[c].used_hook = false;
-      // The machine releases before the pass starts, so the release gets a
-      // pass of its own, without carriers; KnitPaint refuses a release on a
-      // carriage-move row, hence the empty opposite pass before it when the
-      // previous pass went the same way.
-      const Direction direction = hook_->first;
-      const std::int64_t slot = slot_number(carriers_[cs.ids[0]].last_needle);
-      if (!list_.passes.empty() && list_.passes.back().direction == direction) {
-        push(make_candidate(PassType::KnitTuck, opposite(direction), CarrierSet{}, slot,
-                            SlotOp::SoftMiss, stitch_));
-      }
-      Candidate release = make_candidate(PassType::KnitTuck, direction, CarrierSet{}, slot,
-                                         SlotOp::SoftMiss, stitch_);
-      release.pass.hook = Hook::Release;
-      push(release);
-      hook_.reset();
-      return true;
-    }
+    case Op::Inhook:
+      return add_in(in, cs, line);
+    case Op::Releasehook:
+      return add_releasehook(cs, line);
     case Op::Out:
-    case Op::Outhook: {
-      const bool outhook = in.op == Op::Outhook;
-      if (!reject_if_split_via_sliders(line, outhook ? "outhook" : "out")) return false;
-      for (std::size_t i = 0; i < cs.size; ++i) {
-        const std::uint8_t c = cs.ids[i];
-        const std::string name = table.name(in.carriers[i]);
-        if (c == 0 || !carriers_[c].active) {
-          return error(line, "D016", "carrier '" + name + "' is not in, so it cannot go out");
-        }
-        if (!carriers_[c].has_last) {
-          return error(line, "D016",
-                       "carrier " + name + " has not made a stitch since 'in' (line " +
-                           std::to_string(carriers_[c].in_line) + "), so it cannot go out");
-        }
-        if (!outhook && carriers_[c].used_hook) {
-          return error(line, "D017",
-                       "out " + name +
-                           ": the carrier came in with inhook and the hook still holds it; "
-                           "releasehook first, or use outhook");
-        }
-      }
-      if (outhook && hook_) {
-        return error(line, "D017",
-                     "outhook " + instruction_carriers() + ": the hook still holds carriers " +
-                         name_list(hook_->second) + "; releasehook first");
-      }
-      // A rightward carrier move at the rightmost last stitch of the set,
-      // out to the grippers at its end.
-      std::int64_t best = 0;
-      NeedleRef needle;
-      bool found = false;
-      for (std::uint8_t c : cs) {
-        const std::int64_t slot = slot_number(carriers_[c].last_needle);
-        if (!found || slot > best) {
-          best = slot;
-          needle = carriers_[c].last_needle;
-          found = true;
-        }
-      }
-      if (!check_pass_carriers(cs, line)) return false;
-      Candidate candidate = make_candidate(PassType::KnitTuck, Direction::Plus, cs,
-                                           slot_number(needle), SlotOp::SoftMiss, stitch_);
-      candidate.pass.gripper = Gripper::Out;
-      if (outhook) candidate.pass.hook = Hook::Out;
-      merge(candidate);
-      for (std::uint8_t c : cs) carriers_[c] = CarrierState{};
-      return true;
-    }
-    case Op::Rack: {
-      const double racking = in.value[0];
-      const double fraction = racking - std::floor(racking);
-      if (fraction != 0.0 && fraction != 0.25) {
-        return error(line, "D020",
-                     "racking " + format_number(racking) +
-                         " is neither whole nor whole + 0.25 (quarter pitch)");
-      }
-      if (std::abs(racking) > kMaxSaneRacking) {
-        return error(line, "D021",
-                     "racking " + format_number(racking) + " is beyond the machine's range -" +
-                         format_number(profile_.max_racking) + ".." +
-                         format_number(profile_.max_racking));
-      }
-      racking_ = racking;
-      return true;
-    }
-    case Op::Stitch: {
-      if (!reject_if_split_via_sliders(line, "stitch")) return false;
-      const double leading = in.value[0];
-      const double stitch = in.value[1];
-      if (leading != std::floor(leading) || stitch != std::floor(stitch)) {
-        return error(line, "D023", "stitch takes two whole numbers (leading, stitch value)");
-      }
-      for (const StitchEntry& entry : profile_.stitch_table) {
-        if (entry.stitch == stitch && entry.leading == leading) {
-          stitch_ = entry.number;
-          return true;
-        }
-      }
-      return error(line, "D023",
-                   "stitch " + format_number(leading) + " " + format_number(stitch) + ": leading " +
-                       format_number(leading) + " with stitch value " + format_number(stitch) +
-                       " is not in the " + std::string(profile_.name) +
-                       " stitch table (docs/dat.md); use x-stitch-number");
-    }
+    case Op::Outhook:
+      return add_out(in, cs, line);
+    case Op::Rack:
+      return add_rack(in, line);
+    case Op::Stitch:
+      return add_stitch_setting(in, line);
     case Op::Knit:
     case Op::Tuck:
     case Op::Miss:
@@ -514,11 +337,78 @@ bool PassBuilder::add(const Instruction& in, const knitout::CarrierTable& table,
   return true;
 }
 
-bool PassBuilder::check_pass_carriers(const CarrierSet& cs, std::uint32_t line) {
-  if (cs.size < 3) return true;
-  return error(line, "D025",
-               "a pass with " + std::to_string(cs.size) + " carriers (" + name_list(cs) +
-                   "): the DAT yarn-carrier option notates at most two carriers per pass");
+bool PassBuilder::add_extension(const Instruction& in, std::uint32_t line, std::string_view text) {
+  switch (in.extension) {
+    case knitout::Extension::StitchNumber:
+      if (!reject_if_split_via_sliders(line, "x-stitch-number")) return false;
+      stitch_ = static_cast<std::int64_t>(in.value[0]);
+      return true;
+    case knitout::Extension::SpeedNumber:
+      if (!reject_if_split_via_sliders(line, "x-speed-number")) return false;
+      speed_ = static_cast<std::int64_t>(in.value[0]);
+      return true;
+    case knitout::Extension::PresserMode: {
+      if (!reject_if_split_via_sliders(line, "x-presser-mode")) return false;
+      const auto mode = static_cast<knitout::PresserMode>(static_cast<int>(in.value[0]));
+      presser_ = mode == knitout::PresserMode::On     ? Presser::On
+                 : mode == knitout::PresserMode::Auto ? Presser::Auto
+                                                      : Presser::Off;
+      return true;
+    }
+    default: {
+      std::string name(knitout::extension_name(in.extension));
+      if (in.extension == knitout::Extension::Unknown) {
+        name = std::string(text.substr(0, text.find(' ')));
+      }
+      if (std::find(warned_extensions_.begin(), warned_extensions_.end(), name) ==
+          warned_extensions_.end()) {
+        warned_extensions_.push_back(name);
+        warning(line, "D031",
+                "extension '" + name +
+                    "' is not supported by the DAT backend and is ignored (reported once "
+                    "per file)");
+      }
+      return true;
+    }
+  }
+}
+
+bool PassBuilder::add_rack(const Instruction& in, std::uint32_t line) {
+  const double racking = in.value[0];
+  const double fraction = racking - std::floor(racking);
+  if (fraction != 0.0 && fraction != 0.25) {
+    return error(
+        line, "D020",
+        "racking " + format_number(racking) + " is neither whole nor whole + 0.25 (quarter pitch)");
+  }
+  if (std::abs(racking) > kMaxSaneRacking) {
+    return error(line, "D021",
+                 "racking " + format_number(racking) + " is beyond the machine's range -" +
+                     format_number(profile_.max_racking) + ".." +
+                     format_number(profile_.max_racking));
+  }
+  racking_ = racking;
+  return true;
+}
+
+bool PassBuilder::add_stitch_setting(const Instruction& in, std::uint32_t line) {
+  if (!reject_if_split_via_sliders(line, "stitch")) return false;
+  const double leading = in.value[0];
+  const double stitch = in.value[1];
+  if (leading != std::floor(leading) || stitch != std::floor(stitch)) {
+    return error(line, "D023", "stitch takes two whole numbers (leading, stitch value)");
+  }
+  for (const StitchEntry& entry : profile_.stitch_table) {
+    if (entry.stitch == stitch && entry.leading == leading) {
+      stitch_ = entry.number;
+      return true;
+    }
+  }
+  return error(line, "D023",
+               "stitch " + format_number(leading) + " " + format_number(stitch) + ": leading " +
+                   format_number(leading) + " with stitch value " + format_number(stitch) +
+                   " is not in the " + std::string(profile_.name) +
+                   " stitch table (docs/dat.md); use x-stitch-number");
 }
 
 bool PassBuilder::add_stitch_op(const Instruction& in, const CarrierSet& cs, std::uint32_t line) {
@@ -566,8 +456,6 @@ bool PassBuilder::add_split(const Instruction& in, const CarrierSet& cs, std::ui
   }
   std::optional<SlotOp> op;
   PassType type = PassType::Xfer;
-  const std::pair<int, std::int32_t> t_key{static_cast<int>(t.bed), t.index};
-  const std::pair<int, std::int32_t> n_key{static_cast<int>(n.bed), n.index};
   if (!n.is_slider() && !t.is_slider()) {
     if (!reject_if_split_via_sliders(line, op_name)) return false;
     if (cs.empty()) {
@@ -580,28 +468,7 @@ bool PassBuilder::add_split(const Instruction& in, const CarrierSet& cs, std::ui
   } else if (n.is_slider() && !t.is_slider()) {
     if (!cs.empty()) return error(line, "D026", "cannot split from a slider");
     if (svs_) {
-      // Returning a split-via-sliders loop: no pass of its own, the split
-      // pass's colour includes the return (docs/dat.md).
-      if (!svs_->has_return) {
-        svs_->has_return = true;
-        svs_->return_racking = racking_;
-        if (!list_.passes.empty()) {
-          list_.passes.back().has_return_racking = true;
-          list_.passes.back().return_racking = racking_;
-        }
-      }
-      if (svs_->return_racking != racking_) {
-        return error(line, "D027",
-                     "split-via-sliders loops return at racking " +
-                         format_number(svs_->return_racking) + ", not also at " +
-                         format_number(racking_));
-      }
-      if (svs_->needles.erase(n_key) == 0) {
-        return error(line, "D027",
-                     "no split-via-sliders loop waits on " + knitout::to_string(n) +
-                         " (already returned, or never split to)");
-      }
-      if (svs_->needles.empty()) svs_.reset();
+      if (!return_from_slider(n, line)) return false;
     } else {
       type = PassType::XferFromSliders;
       op = n.is_front() ? SlotOp::XferToBack : SlotOp::XferToFront;
@@ -612,24 +479,7 @@ bool PassBuilder::add_split(const Instruction& in, const CarrierSet& cs, std::ui
       type = PassType::XferToSliders;
       op = n.is_front() ? SlotOp::XferToBack : SlotOp::XferToFront;
     } else {
-      if (!svs_) {
-        svs_.emplace();
-        svs_->racking = racking_;
-      }
-      if (svs_->has_return) {
-        return error(line, "D027",
-                     "split to a slider while split-via-sliders loops are being returned");
-      }
-      if (svs_->racking != racking_) {
-        return error(line, "D027",
-                     "split-via-sliders at racking " + format_number(racking_) +
-                         " while others were split at racking " + format_number(svs_->racking));
-      }
-      if (!svs_->needles.insert(t_key).second) {
-        return error(line, "D027",
-                     "split-via-sliders " + knitout::to_string(n) + " -> " + knitout::to_string(t) +
-                         ": that slider already holds a split loop");
-      }
+      if (!split_to_slider(n, t, line)) return false;
       type = PassType::SplitViaSliders;
       op = n.is_front() ? SlotOp::SplitToBack : SlotOp::SplitToFront;
     }
@@ -658,77 +508,55 @@ bool PassBuilder::add_split(const Instruction& in, const CarrierSet& cs, std::ui
   return true;
 }
 
-bool PassBuilder::handle_in(const CarrierSet& cs, Candidate& candidate, std::uint32_t line) {
-  if (cs.empty()) return true;
-  int pending = -1;
-  for (std::size_t i = 0; i < cs.size; ++i) {
-    const std::uint8_t c = cs.ids[i];
-    if (c == 0 || !carriers_[c].active) {
-      return error(line, "D014",
-                   "carrier '" + table_->name(current_->carriers[i]) +
-                       "' is used but not in (bring it in with 'in' or 'inhook')");
-    }
-    if (carriers_[c].in_info >= 0) {
-      pending = carriers_[c].in_info;
-      carriers_[c].in_info = -1;
+// Returning a split-via-sliders loop from slider needle n: no pass of its
+// own, the split pass's colour includes the return (docs/dat.md).
+bool PassBuilder::return_from_slider(const knitout::Needle& n, std::uint32_t line) {
+  if (!svs_->has_return) {
+    svs_->has_return = true;
+    svs_->return_racking = racking_;
+    if (!list_.passes.empty()) {
+      list_.passes.back().has_return_racking = true;
+      list_.passes.back().return_racking = racking_;
     }
   }
-  if (pending < 0) return true;
-  const InInfo& in_info = in_infos_[static_cast<std::size_t>(pending)];
-  if (!(in_info.carriers == cs)) {
-    return error(line, "D012",
-                 "first use of carriers " + name_list(cs) +
-                     " does not match the set brought in together: " + name_list(in_info.carriers));
+  if (svs_->return_racking != racking_) {
+    return error(line, "D027",
+                 "split-via-sliders loops return at racking " +
+                     format_number(svs_->return_racking) + ", not also at " +
+                     format_number(racking_));
   }
-  candidate.pass.gripper = Gripper::In;
-  if (in_info.hook) {
-    candidate.pass.hook = Hook::In;
-    if (hook_) {
-      return error(line, "D013",
-                   "cannot bring in carriers " + name_list(cs) +
-                       " with the hook: it still holds carriers " + name_list(hook_->second) +
-                       " (releasehook first)");
-    }
-    hook_.emplace(candidate.pass.direction, cs);
+  if (svs_->needles.erase({static_cast<int>(n.bed), n.index}) == 0) {
+    return error(line, "D027",
+                 "no split-via-sliders loop waits on " + knitout::to_string(n) +
+                     " (already returned, or never split to)");
   }
+  if (svs_->needles.empty()) svs_.reset();
   return true;
 }
 
-void PassBuilder::set_last(const CarrierSet& cs, Direction direction, NeedleRef needle) {
-  for (std::uint8_t c : cs) {
-    CarrierState& state = carriers_[c];
-    state.has_last = true;
-    state.last_needle = needle;
-    state.last_direction = direction;
-    state.kick_needle = needle;
-    state.kick_direction = direction;
+// A split with yarn from needle n to slider t: its loop waits there to be
+// returned.
+bool PassBuilder::split_to_slider(const knitout::Needle& n, const knitout::Needle& t,
+                                  std::uint32_t line) {
+  if (!svs_) {
+    svs_.emplace();
+    svs_->racking = racking_;
   }
-}
-
-// Moves every other active carrier off the needle about to be worked: a
-// carrier attached left of it must be parked left of it, one attached right
-// parked right. Carriers are visited in carrier-number order.
-void PassBuilder::kick_others(NeedleRef needle, const CarrierSet& cs) {
-  const std::int64_t needle_slot = slot_number(needle);
-  for (std::uint8_t c = 1; c <= 10; ++c) {
-    CarrierState& state = carriers_[c];
-    if (!state.active || cs.contains(c) || !state.has_last) continue;
-    const std::int64_t last_slot = slot_number(state.last_needle);
-    // The yarn hangs just left (direction -) or right (+) of its last needle.
-    const bool left = last_slot < needle_slot ||
-                      (last_slot == needle_slot && state.last_direction == Direction::Minus);
-    const std::int64_t kick_slot = slot_number(state.kick_needle);
-    const Direction want = left ? Direction::Minus : Direction::Plus;
-    const bool parked = left
-                            ? (state.kick_direction == Direction::Minus && kick_slot <= needle_slot)
-                            : (state.kick_direction == Direction::Plus && kick_slot >= needle_slot);
-    if (parked) continue;
-    CarrierSet one;
-    one.ids[one.size++] = c;
-    merge(make_candidate(PassType::KnitTuck, want, one, last_slot, SlotOp::SoftMiss, stitch_));
-    state.kick_direction = want;
-    state.kick_needle = NeedleRef{Bed::Front, last_slot};
+  if (svs_->has_return) {
+    return error(line, "D027",
+                 "split to a slider while split-via-sliders loops are being returned");
   }
+  if (svs_->racking != racking_) {
+    return error(line, "D027",
+                 "split-via-sliders at racking " + format_number(racking_) +
+                     " while others were split at racking " + format_number(svs_->racking));
+  }
+  if (!svs_->needles.insert({static_cast<int>(t.bed), t.index}).second) {
+    return error(line, "D027",
+                 "split-via-sliders " + knitout::to_string(n) + " -> " + knitout::to_string(t) +
+                     ": that slider already holds a split loop");
+  }
+  return true;
 }
 
 // Merges a one-slot pass into the last pass, or starts a new pass with it,
@@ -944,85 +772,6 @@ std::optional<PassList> form_passes(const knitout::Program& program, std::string
   }
   if (!builder.finish(last_line)) return std::nullopt;
   return builder.take_passes();
-}
-
-std::vector<CarriagePass> summarize(const PassList& list) {
-  std::vector<CarriagePass> result;
-  result.reserve(list.passes.size());
-  for (const Pass& pass : list.passes) {
-    CarriagePass summary;
-    summary.type = pass.type;
-    summary.direction = pass.direction;
-    for (std::uint8_t c : pass.carriers) summary.carriers.push_back(std::to_string(c));
-    summary.racking = pass.racking;
-    summary.slots = pass.entry_count;
-    summary.line = pass.line;
-    result.push_back(std::move(summary));
-  }
-  return result;
-}
-
-std::optional<std::vector<CarriagePass>> carriage_passes(const knitout::Program& program,
-                                                         std::string source,
-                                                         knitout::DiagnosticSink& sink,
-                                                         const Profile& profile) {
-  auto list = form_passes(program, std::move(source), sink, profile);
-  if (!list) return std::nullopt;
-  return summarize(*list);
-}
-
-namespace {
-
-std::string direction_text(Direction direction) {
-  return direction == Direction::None ? "none" : std::string(1, knitout::direction_char(direction));
-}
-
-}  // namespace
-
-void write_carriage_passes_text(std::ostream& out, const std::vector<CarriagePass>& passes,
-                                bool each_pass) {
-  constexpr std::array<PassType, 7> kTypes = {PassType::KnitTuck,       PassType::AMiss,
-                                              PassType::Split,          PassType::SplitViaSliders,
-                                              PassType::Xfer,           PassType::XferToSliders,
-                                              PassType::XferFromSliders};
-  out << "carriage passes: " << passes.size();
-  std::string counts;
-  for (PassType type : kTypes) {
-    const auto n = std::count_if(passes.begin(), passes.end(),
-                                 [&](const CarriagePass& p) { return p.type == type; });
-    if (n == 0) continue;
-    if (!counts.empty()) counts += ", ";
-    counts += std::to_string(n) + " " + std::string(pass_type_name(type));
-  }
-  if (!counts.empty()) out << " (" << counts << ")";
-  out << '\n';
-  if (!each_pass) return;
-  std::size_t number = 0;
-  for (const CarriagePass& pass : passes) {
-    out << "  pass " << ++number << " (line " << pass.line
-        << "): " << direction_text(pass.direction) << " carriers";
-    if (pass.carriers.empty()) out << " -";
-    for (const std::string& c : pass.carriers) out << ' ' << c;
-    out << " racking " << format_number(pass.racking) << ' ' << pass_type_name(pass.type) << ", "
-        << pass.slots << (pass.slots == 1 ? " slot" : " slots") << '\n';
-  }
-}
-
-void write_carriage_passes_json(std::ostream& out, const std::vector<CarriagePass>& passes) {
-  out << "{\"count\": " << passes.size() << ", \"passes\": [";
-  bool first = true;
-  for (const CarriagePass& pass : passes) {
-    out << (first ? "" : ", ") << "{\"type\": " << knitout::json_quote(pass_type_name(pass.type))
-        << ", \"direction\": " << knitout::json_quote(direction_text(pass.direction))
-        << ", \"carriers\": [";
-    for (std::size_t i = 0; i < pass.carriers.size(); ++i) {
-      out << (i == 0 ? "" : ", ") << knitout::json_quote(pass.carriers[i]);
-    }
-    out << "], \"racking\": " << format_number(pass.racking) << ", \"slots\": " << pass.slots
-        << ", \"line\": " << pass.line << "}";
-    first = false;
-  }
-  out << "]}";
 }
 
 }  // namespace dat

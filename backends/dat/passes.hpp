@@ -14,6 +14,10 @@
 // formation (like the reference, which stops at its first error). Where
 // the reference crashes (three or more carriers in one pass, a program
 // without passes) the builder reports a clear error instead.
+//
+// PassBuilder is in passes.cpp (pass formation, settings, stitches, splits)
+// and pass_carriers.cpp (carriers in and out, the hook, kicks); the
+// summaries of carriage_passes() in carriage_passes.cpp.
 #pragma once
 
 #include <array>
@@ -200,8 +204,18 @@ class PassBuilder {
   Candidate make_candidate(PassType type, knitout::Direction direction, const CarrierSet& carriers,
                            std::int64_t slot, SlotOp op, std::int64_t stitch) const;
 
+  // One `add` per kind of instruction; false after an error.
+  bool add_extension(const knitout::Instruction& in, std::uint32_t line, std::string_view text);
+  bool add_rack(const knitout::Instruction& in, std::uint32_t line);
+  bool add_stitch_setting(const knitout::Instruction& in, std::uint32_t line);
   bool add_stitch_op(const knitout::Instruction& in, const CarrierSet& cs, std::uint32_t line);
   bool add_split(const knitout::Instruction& in, const CarrierSet& cs, std::uint32_t line);
+  bool return_from_slider(const knitout::Needle& n, std::uint32_t line);
+  bool split_to_slider(const knitout::Needle& n, const knitout::Needle& t, std::uint32_t line);
+  // Carriers in and out, and the hook (pass_carriers.cpp).
+  bool add_in(const knitout::Instruction& in, const CarrierSet& cs, std::uint32_t line);
+  bool add_releasehook(const CarrierSet& cs, std::uint32_t line);
+  bool add_out(const knitout::Instruction& in, const CarrierSet& cs, std::uint32_t line);
   bool check_pass_carriers(const CarrierSet& cs, std::uint32_t line);
   bool handle_in(const CarrierSet& cs, Candidate& candidate, std::uint32_t line);
   void kick_others(NeedleRef needle, const CarrierSet& cs);

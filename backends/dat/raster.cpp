@@ -7,6 +7,7 @@
 #include <string>
 
 #include "backends/dat/reader.hpp"
+#include "knitout/writer.hpp"
 
 namespace dat {
 
@@ -18,13 +19,6 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
   std::int64_t q = a / b;
   if ((a % b != 0) && ((a < 0) != (b < 0))) --q;
   return q;
-}
-
-std::string format_racking(double racking) {
-  std::string text = std::to_string(racking);
-  while (!text.empty() && text.back() == '0') text.pop_back();
-  if (!text.empty() && text.back() == '.') text.pop_back();
-  return text;
 }
 
 // Option values are bytes; the reference stores them into a byte array,
@@ -139,22 +133,23 @@ bool is_xfer(PassType type) {
          type == PassType::XferFromSliders;
 }
 
-// Draws everything; `begin` gets the raster size before the first row.
-bool draw(const PassList& list, knitout::DiagnosticSink& sink,
-          const std::function<void(int, int)>& begin,
-          const std::function<void(std::span<const std::uint8_t>)>& emit) {
+// The needle slots the passes use, checked against what a DAT can hold
+// (D030) and, for Position Keep, against the bed (D028); the raster's
+// width and height. False after an error.
+bool design_size(const PassList& list, knitout::DiagnosticSink& sink, std::int64_t& min_slot,
+                 std::int64_t& max_slot, std::int64_t& width, std::int64_t& height) {
   if (list.passes.empty()) {
     sink.error(list.source, 0, 0, "D029", "nothing to knit: the program forms no carriage pass");
     return false;
   }
-  std::int64_t min_slot = list.passes.front().min_slot;
-  std::int64_t max_slot = list.passes.front().max_slot;
+  min_slot = list.passes.front().min_slot;
+  max_slot = list.passes.front().max_slot;
   for (const Pass& pass : list.passes) {
     min_slot = std::min(min_slot, pass.min_slot);
     max_slot = std::max(max_slot, pass.max_slot);
   }
-  const std::int64_t width = kLeftSpace + (max_slot - min_slot + 1) + kRightSpace;
-  const std::int64_t height =
+  width = kLeftSpace + (max_slot - min_slot + 1) + kRightSpace;
+  height =
       kTopSpace + static_cast<std::int64_t>(list.passes.size()) + kBottomSpace + 2 * kFixedCourses;
   if (width > kMaxDimension + 1 || height > kMaxDimension + 1) {
     sink.error(list.source, 0, 0, "D030",
@@ -171,6 +166,90 @@ bool draw(const PassList& list, knitout::DiagnosticSink& sink,
                    std::to_string(list.bed_width));
     return false;
   }
+  return true;
+}
+
+// The colours of a pass's slots. A split-via-sliders split's colour also
+// encodes the return from the slider: which way (L/R) and how far (1, 2,
+// 4) the return racking lies; false (D027) when it cannot.
+bool pass_colours(const PassList& list, const Pass& pass, knitout::DiagnosticSink& sink,
+                  std::vector<std::uint8_t>& colours) {
+  const auto slots = list.slots(pass);
+  colours.resize(slots.size());
+  for (std::size_t i = 0; i < slots.size(); ++i) colours[i] = slot_op_colour(slots[i].op);
+  if (pass.type != PassType::SplitViaSliders) return true;
+  const auto pair = split_via_sliders_colours(pass);
+  const std::uint8_t front = pair ? pair->first : 0;
+  const std::uint8_t back = pair ? pair->second : 0;
+  if (front == 0) {
+    sink.error(list.source, pass.line, 0, "D027",
+               pass.has_return_racking
+                   ? "split-via-sliders at racking " + knitout::format_number(pass.racking) +
+                         " returned at racking " + knitout::format_number(pass.return_racking) +
+                         ": the return must be 1, 2 or 4 needles away"
+                   : std::string("split-via-sliders pass whose loops are never returned "
+                                 "from the sliders (xfer them back in the next passes)"));
+    return false;
+  }
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    if (slots[i].op == SlotOp::SplitToBack) colours[i] = front;
+    if (slots[i].op == SlotOp::SplitToFront) colours[i] = back;
+  }
+  return true;
+}
+
+// The option lines of a pass's row but its direction and carriage move;
+// `hook_active`: whether the yarn-inserting hook holds a yarn, kept from
+// pass to pass.
+Options pass_options(const Pass& pass, bool& hook_active) {
+  Options options;
+  options.right[9] = 1;  // ignore the links process
+  options.right[3] = carrier_code(pass);
+  if (pass.type == PassType::XferToSliders) options.left[13] = 1;
+  if (pass.type == PassType::XferFromSliders) options.left[13] = 3;
+  if (pass.type == PassType::Split) options.left[12] = 10;
+  if (pass.gripper == Gripper::In) options.right[10] = carrier_code(pass);
+  if (pass.gripper == Gripper::Out) options.right[10] = 100 + carrier_code(pass);
+  if (pass.pause) options.left[7] = 20;
+  const bool presser = pass.presser == Presser::On ||
+                       (pass.presser == Presser::Auto && !hook_active && pass.hook == Hook::None &&
+                        !(pass.has_front && pass.has_back));
+  if (presser) options.right[11] = 101;
+  if (pass.hook == Hook::In) {
+    options.right[15] = 10;
+    hook_active = true;
+  } else if (pass.hook == Hook::Out) {
+    options.right[15] = 20;
+  } else if (pass.hook == Hook::Release) {
+    options.right[15] = 90;
+    hook_active = false;
+  }
+  options.right[6] = pass.stitch;
+  const std::int64_t speed = pass.speed == 0 ? 0 : pass.speed + 10;
+  options.left[5] = speed;
+  options.left[6] = speed;
+  if (is_xfer(pass.type)) {
+    options.right[5] = 1;  // knit cancel: transfers use knit+xfer stitches
+    if (pass.stitch != 0) options.right[13] = 100;
+  }
+  if (pass.type == PassType::AMiss) options.left[12] = 20;
+  if (pass.racking >= 1.0) {
+    options.left[4] = 11;
+    options.left[2] = static_cast<std::int64_t>(std::floor(pass.racking - 1.0));
+  } else {
+    options.left[4] = 10;
+    options.left[2] = -static_cast<std::int64_t>(std::floor(pass.racking));
+  }
+  options.left[3] = pass.racking == std::floor(pass.racking) ? 0 : 1;
+  return options;
+}
+
+// Draws everything; `begin` gets the raster size before the first row.
+bool draw(const PassList& list, knitout::DiagnosticSink& sink,
+          const std::function<void(int, int)>& begin,
+          const std::function<void(std::span<const std::uint8_t>)>& emit) {
+  std::int64_t min_slot = 0, max_slot = 0, width = 0, height = 0;
+  if (!design_size(list, sink, min_slot, max_slot, width, height)) return false;
   const std::int64_t position = position_code(list, min_slot, max_slot);
   begin(static_cast<int>(width), static_cast<int>(height));
 
@@ -183,78 +262,14 @@ bool draw(const PassList& list, knitout::DiagnosticSink& sink,
   bool hook_active = false;
   std::vector<std::uint8_t> colours;
   for (const Pass& pass : list.passes) {
-    const auto slots = list.slots(pass);
-    colours.resize(slots.size());
-    for (std::size_t i = 0; i < slots.size(); ++i) colours[i] = slot_op_colour(slots[i].op);
-    if (pass.type == PassType::SplitViaSliders) {
-      // The split's colour also encodes the return from the slider: which
-      // way (L/R) and how far (1, 2, 4) the return racking lies.
-      const auto pair = split_via_sliders_colours(pass);
-      const std::uint8_t front = pair ? pair->first : 0;
-      const std::uint8_t back = pair ? pair->second : 0;
-      if (front == 0) {
-        sink.error(list.source, pass.line, 0, "D027",
-                   pass.has_return_racking
-                       ? "split-via-sliders at racking " + format_racking(pass.racking) +
-                             " returned at racking " + format_racking(pass.return_racking) +
-                             ": the return must be 1, 2 or 4 needles away"
-                       : std::string("split-via-sliders pass whose loops are never returned "
-                                     "from the sliders (xfer them back in the next passes)"));
-        return false;
-      }
-      for (std::size_t i = 0; i < slots.size(); ++i) {
-        if (slots[i].op == SlotOp::SplitToBack) colours[i] = front;
-        if (slots[i].op == SlotOp::SplitToFront) colours[i] = back;
-      }
-    }
-
-    Options options;
-    options.right[9] = 1;  // ignore the links process
-    options.right[3] = carrier_code(pass);
-    if (pass.type == PassType::XferToSliders) options.left[13] = 1;
-    if (pass.type == PassType::XferFromSliders) options.left[13] = 3;
-    if (pass.type == PassType::Split) options.left[12] = 10;
-    if (pass.gripper == Gripper::In) options.right[10] = carrier_code(pass);
-    if (pass.gripper == Gripper::Out) options.right[10] = 100 + carrier_code(pass);
-    if (pass.pause) options.left[7] = 20;
-    const bool presser = pass.presser == Presser::On ||
-                         (pass.presser == Presser::Auto && !hook_active &&
-                          pass.hook == Hook::None && !(pass.has_front && pass.has_back));
-    if (presser) options.right[11] = 101;
-    if (pass.hook == Hook::In) {
-      options.right[15] = 10;
-      hook_active = true;
-    } else if (pass.hook == Hook::Out) {
-      options.right[15] = 20;
-    } else if (pass.hook == Hook::Release) {
-      options.right[15] = 90;
-      hook_active = false;
-    }
-    options.right[6] = pass.stitch;
-    const std::int64_t speed = pass.speed == 0 ? 0 : pass.speed + 10;
-    options.left[5] = speed;
-    options.left[6] = speed;
-    if (is_xfer(pass.type)) {
-      options.right[5] = 1;  // knit cancel: transfers use knit+xfer stitches
-      if (pass.stitch != 0) options.right[13] = 100;
-    }
-    if (pass.type == PassType::AMiss) options.left[12] = 20;
-
+    if (!pass_colours(list, pass, sink, colours)) return false;
     if (std::abs(pass.racking) > 8) {
-      sink.error(
-          list.source, pass.line, 0, "D021",
-          "racking " + format_racking(pass.racking) + " is beyond the machine's range -8..8");
+      sink.error(list.source, pass.line, 0, "D021",
+                 "racking " + knitout::format_number(pass.racking) +
+                     " is beyond the machine's range -8..8");
       return false;
     }
-    if (pass.racking >= 1.0) {
-      options.left[4] = 11;
-      options.left[2] = static_cast<std::int64_t>(std::floor(pass.racking - 1.0));
-    } else {
-      options.left[4] = 10;
-      options.left[2] = -static_cast<std::int64_t>(std::floor(pass.racking));
-    }
-    options.left[3] = pass.racking == std::floor(pass.racking) ? 0 : 1;
-
+    Options options = pass_options(pass, hook_active);
     // Drops and a-misses have no direction but still move the carriage: away
     // from the side it is on.
     Direction direction = pass.direction;

@@ -12,6 +12,7 @@
 
 #include "planner/common/index.hpp"
 #include "planner/common/union_find.hpp"
+#include "planner/mesh/soup.hpp"
 
 namespace planner {
 
@@ -23,8 +24,7 @@ namespace {
 constexpr std::array<std::array<int, 2>, 4> kStep = {{{0, -1}, {1, 0}, {0, 1}, {-1, 0}}};
 
 std::uint64_t cell_key(const std::array<int, 2>& uv) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(uv[0])) << 32) |
-         static_cast<std::uint32_t>(uv[1]);
+  return pair_key(uv[0], uv[1]);
 }
 
 bool is_vanishing(const HalfedgeMesh& q, const FieldLabels& labels, int h) {
@@ -296,59 +296,106 @@ int halfedge_direction(const HalfedgeMesh& q, const FieldLabels& labels, int fra
   return d % 4;
 }
 
-CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params) {
-  CutMesh cut;
-  cut.proxy = std::move(proxy);
-  const HalfedgeMesh& q = cut.proxy;
-  const int nf = q.num_faces();
-  const int nh = q.num_halfedges();
-  if (nf == 0) throw std::logic_error("cut_surface: empty proxy");
-  cut.labels = label_field(q, params.vanishing);
-  const FieldLabels& labels = cut.labels;
+namespace {
 
-  std::mt19937_64 rng(params.seed);
-  // The seed is an arbitrary quad (§4.1); the seed number picks it.
+// The seed is an arbitrary quad (§4.1), picked by the random generator; a
+// proxy without quads starts from any face.
+int pick_seed_face(const HalfedgeMesh& q, std::mt19937_64& rng) {
+  const int nf = q.num_faces();
   std::vector<int> quads;
   for (int f = 0; f < nf; ++f) {
     if (q.degree(f) == 4) quads.push_back(f);
   }
-  const int seed_face = quads.empty() ? static_cast<int>(rng() % static_cast<std::uint64_t>(nf))
-                                      : quads[rng() % quads.size()];
-  cut.seed_face = seed_face;
-  cut.motorcycle_edges = motorcycle_graph(q, labels, rng);
+  return quads.empty() ? static_cast<int>(rng() % static_cast<std::uint64_t>(nf))
+                       : quads[rng() % quads.size()];
+}
 
-  cut.face_frame.assign(at(nf), -1);
-  cut.direction.assign(at(nh), -1);
-  cut.face_uv.assign(at(nf), {0, 0});
-  std::vector<double> overlap_score(at(nf), 0.0);
-  std::unordered_map<std::uint64_t, int> grid;
-  std::vector<bool> visited(at(nf), false);
-  std::vector<bool> in_b(at(nh), false);
-  std::vector<int> next_b(at(nh), -1);
-  std::vector<int> prev_b(at(nh), -1);
-  int b_size = 0;
-
-  auto place = [&](int f, int frame, std::array<int, 2> uv, double score) {
-    visited[at(f)] = true;
-    cut.face_frame[at(f)] = frame;
-    for (int i = 0; i < q.degree(f); ++i) {
-      const int h = q.face_start(f) + i;
-      cut.direction[at(h)] = halfedge_direction(q, labels, frame, h);
+// The seed face's frame: the wale direction (+v) along the side that runs
+// closest to the longest side of Q's bounding box.
+int seed_frame(const HalfedgeMesh& q, const FieldLabels& labels, int seed_face) {
+  const Vec3 size = bounding_box_size(q.polygons());
+  Vec3 axis = Vec3::Zero();
+  int longest = 0;
+  size.maxCoeff(&longest);
+  axis[longest] = 1.0;
+  int best_h = q.face_start(seed_face);
+  double best = -2.0;
+  for (int i = 0; i < q.degree(seed_face); ++i) {
+    const int h = q.face_start(seed_face) + i;
+    const Vec3 d = (q.position(q.to(h)) - q.position(q.from(h))).normalized();
+    if (d.dot(axis) > best) {
+      best = d.dot(axis);
+      best_h = h;
     }
-    cut.face_uv[at(f)] = uv;
-    overlap_score[at(f)] = score;
-    ++grid[cell_key(uv)];
-  };
-  auto score_of = [&](int h) {
-    const int f = q.face(h);
-    const auto& step = kStep[at(cut.direction[at(h)])];
-    const std::array<int, 2> uv = {cut.face_uv[at(f)][0] + step[0],
-                                   cut.face_uv[at(f)][1] + step[1]};
-    auto it = grid.find(cell_key(uv));
-    const int count = it == grid.end() ? 0 : it->second;
-    return params.cs * cut.motorcycle_edges[at(q.edge(h))] +
-           params.co * (overlap_score[at(f)] + count);
-  };
+  }
+  return ((1 - halfedge_direction(q, labels, 0, best_h)) % 4 + 4) % 4;
+}
+
+// §4.1–4.2 patch growing. The patch starts as one face and grows over the
+// half-edge of its boundary B with the lowest cuttability score
+// c_s * (motorcycle crossings) + c_o * (overlap score), equal scores in the
+// order of a random key. Every face reached gets a frame and an integer
+// (u, v) cell; consecutive half-edges of B on the two sides of one edge
+// fuse when their directions are opposite. B is kept as a doubly linked
+// cycle of Q's half-edges; what is left of it at the end is the cut.
+class PatchGrower {
+ public:
+  // Grows over cut.proxy with cut.labels and cut.motorcycle_edges; fills
+  // cut.face_frame, cut.direction and cut.face_uv. `rng` draws the keys.
+  PatchGrower(CutMesh& cut, const CutParams& params, std::mt19937_64& rng)
+      : cut_(cut),
+        q_(cut.proxy),
+        labels_(cut.labels),
+        params_(params),
+        rng_(rng),
+        overlap_score_(at(q_.num_faces()), 0.0),
+        visited_(at(q_.num_faces()), false),
+        in_b_(at(q_.num_halfedges()), false),
+        next_b_(at(q_.num_halfedges()), -1),
+        prev_b_(at(q_.num_halfedges()), -1) {
+    cut_.face_frame.assign(at(q_.num_faces()), -1);
+    cut_.direction.assign(at(q_.num_halfedges()), -1);
+    cut_.face_uv.assign(at(q_.num_faces()), {0, 0});
+  }
+
+  // The patch is face `f` with its first half-edge in direction `frame`, at cell (0, 0).
+  void start(int f, int frame) {
+    place(f, frame, {0, 0}, 0.0);
+    const int n = q_.degree(f);
+    for (int i = 0; i < n; ++i) {
+      const int h = q_.face_start(f) + i;
+      in_b_[at(h)] = true;
+      next_b_[at(h)] = q_.face_start(f) + (i + 1) % n;
+      prev_b_[at(h)] = q_.face_start(f) + (i + n - 1) % n;
+    }
+    b_size_ = n;
+    placed_ = 1;
+    offer(f);
+  }
+
+  // Grows until no face can be reached; returns how many faces the patch holds.
+  int grow() {
+    while (!queue_.empty()) {
+      const Entry entry = queue_.top();
+      queue_.pop();
+      const int h = entry.h;
+      if (!in_b_[at(h)] || visited_[at(q_.face(q_.twin(h)))]) continue;
+      const double score = score_of(h);
+      if (score > entry.score + 1e-9) {  // stale: the grid filled up since it was offered
+        queue_.push({score, rng_(), h});
+        continue;
+      }
+      expand(h);
+    }
+    return placed_;
+  }
+
+  // Half-edge h is on the patch's boundary.
+  bool on_boundary(int h) const { return in_b_[at(h)]; }
+  // How many faces of the patch are in cell `uv`.
+  int faces_in_cell(const std::array<int, 2>& uv) { return grid_[cell_key(uv)]; }
+
+ private:
   struct Entry {
     double score;
     std::uint64_t key;
@@ -359,129 +406,149 @@ CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params) {
       return h > o.h;
     }
   };
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  auto offer = [&](int f) {
-    for (int i = 0; i < q.degree(f); ++i) {
-      const int h = q.face_start(f) + i;
-      const int t = q.twin(h);
-      if (in_b[at(h)] && t >= 0 && !visited[at(q.face(t))]) queue.push({score_of(h), rng(), h});
-    }
-  };
 
-  // Seed frame: the wale direction (+v) along the longest side of Q's bounding box.
-  {
-    const Vec3 size = bounding_box_size(q.polygons());
-    Vec3 axis = Vec3::Zero();
-    int longest = 0;
-    size.maxCoeff(&longest);
-    axis[longest] = 1.0;
-    int best_h = q.face_start(seed_face);
-    double best = -2.0;
-    for (int i = 0; i < q.degree(seed_face); ++i) {
-      const int h = q.face_start(seed_face) + i;
-      const Vec3 d = (q.position(q.to(h)) - q.position(q.from(h))).normalized();
-      if (d.dot(axis) > best) {
-        best = d.dot(axis);
-        best_h = h;
-      }
+  void place(int f, int frame, std::array<int, 2> uv, double score) {
+    visited_[at(f)] = true;
+    cut_.face_frame[at(f)] = frame;
+    for (int i = 0; i < q_.degree(f); ++i) {
+      const int h = q_.face_start(f) + i;
+      cut_.direction[at(h)] = halfedge_direction(q_, labels_, frame, h);
     }
-    const int frame = ((1 - halfedge_direction(q, labels, 0, best_h)) % 4 + 4) % 4;
-    place(seed_face, frame, {0, 0}, 0.0);
-    const int n = q.degree(seed_face);
-    for (int i = 0; i < n; ++i) {
-      const int h = q.face_start(seed_face) + i;
-      in_b[at(h)] = true;
-      next_b[at(h)] = q.face_start(seed_face) + (i + 1) % n;
-      prev_b[at(h)] = q.face_start(seed_face) + (i + n - 1) % n;
-    }
-    b_size = n;
-    offer(seed_face);
+    cut_.face_uv[at(f)] = uv;
+    overlap_score_[at(f)] = score;
+    ++grid_[cell_key(uv)];
   }
 
-  auto try_fusions = [&](std::vector<int> pending) {
+  // The cell across half-edge h of a placed face.
+  std::array<int, 2> cell_across(int h) const {
+    const int f = q_.face(h);
+    const auto& step = kStep[at(cut_.direction[at(h)])];
+    return {cut_.face_uv[at(f)][0] + step[0], cut_.face_uv[at(f)][1] + step[1]};
+  }
+
+  // How many faces of the patch are in the cell across h.
+  int count_across(int h) const {
+    const auto it = grid_.find(cell_key(cell_across(h)));
+    return it == grid_.end() ? 0 : it->second;
+  }
+
+  double score_of(int h) const {
+    const int count = count_across(h);
+    return params_.cs * cut_.motorcycle_edges[at(q_.edge(h))] +
+           params_.co * (overlap_score_[at(q_.face(h))] + count);
+  }
+
+  // Queues the half-edges of f on B that lead to a face not yet reached.
+  void offer(int f) {
+    for (int i = 0; i < q_.degree(f); ++i) {
+      const int h = q_.face_start(f) + i;
+      const int t = q_.twin(h);
+      if (in_b_[at(h)] && t >= 0 && !visited_[at(q_.face(t))])
+        queue_.push({score_of(h), rng_(), h});
+    }
+  }
+
+  // §4.1 expansion over h: the face g across it joins with the frame that
+  // makes its half-edge t opposite to h, and in B h is replaced by g's other
+  // half-edges, in order.
+  void expand(int h) {
+    const int t = q_.twin(h);
+    const int g = q_.face(t);
+    const int f = q_.face(h);
+    const int frame =
+        ((cut_.direction[at(h)] + 2 - halfedge_direction(q_, labels_, 0, t)) % 4 + 4) % 4;
+    place(g, frame, cell_across(h), overlap_score_[at(f)] + count_across(h));
+    ++placed_;
+    const int before = prev_b_[at(h)];
+    const int after = next_b_[at(h)];
+    in_b_[at(h)] = false;
+    int last = before;
+    for (int x = q_.next(t); x != t; x = q_.next(x)) {
+      in_b_[at(x)] = true;
+      next_b_[at(last)] = x;
+      prev_b_[at(x)] = last;
+      last = x;
+    }
+    next_b_[at(last)] = after;
+    prev_b_[at(after)] = last;
+    b_size_ += q_.degree(g) - 2;
+    fuse({before, last});
+    offer(g);
+  }
+
+  // §4.1 fusion: consecutive boundary elements on the two sides of one edge
+  // dissolve, only when their directions are opposite; each fusion makes
+  // the element before them a candidate for the next.
+  void fuse(std::vector<int> pending) {
     while (!pending.empty()) {
       const int a = pending.back();
       pending.pop_back();
-      if (!in_b[at(a)]) continue;
-      const int b = next_b[at(a)];
-      // §4.1 fusion: consecutive boundary elements on the two sides of one
-      // edge dissolve, only when their directions are opposite.
-      if (b != q.twin(a) || b_size <= 2) continue;
-      if ((cut.direction[at(a)] + 2) % 4 != cut.direction[at(b)]) continue;
-      const int before = prev_b[at(a)];
-      const int after = next_b[at(b)];
-      next_b[at(before)] = after;
-      prev_b[at(after)] = before;
-      in_b[at(a)] = in_b[at(b)] = false;
-      b_size -= 2;
+      if (!in_b_[at(a)]) continue;
+      const int b = next_b_[at(a)];
+      if (b != q_.twin(a) || b_size_ <= 2) continue;
+      if ((cut_.direction[at(a)] + 2) % 4 != cut_.direction[at(b)]) continue;
+      const int before = prev_b_[at(a)];
+      const int after = next_b_[at(b)];
+      next_b_[at(before)] = after;
+      prev_b_[at(after)] = before;
+      in_b_[at(a)] = in_b_[at(b)] = false;
+      b_size_ -= 2;
       // §4.2: both faces take the smaller overlap score, plus their own cell's extra layers.
-      const int fa = q.face(a);
-      const int fb = q.face(b);
-      const double low = std::min(overlap_score[at(fa)], overlap_score[at(fb)]);
-      overlap_score[at(fa)] = low + grid[cell_key(cut.face_uv[at(fa)])] - 1;
-      overlap_score[at(fb)] = low + grid[cell_key(cut.face_uv[at(fb)])] - 1;
+      const int fa = q_.face(a);
+      const int fb = q_.face(b);
+      const double low = std::min(overlap_score_[at(fa)], overlap_score_[at(fb)]);
+      overlap_score_[at(fa)] = low + grid_[cell_key(cut_.face_uv[at(fa)])] - 1;
+      overlap_score_[at(fb)] = low + grid_[cell_key(cut_.face_uv[at(fb)])] - 1;
       offer(fa);
       offer(fb);
       pending.push_back(before);
     }
-  };
-
-  int placed = 1;
-  while (!queue.empty()) {
-    const Entry entry = queue.top();
-    queue.pop();
-    const int h = entry.h;
-    if (!in_b[at(h)]) continue;
-    const int t = q.twin(h);
-    const int g = q.face(t);
-    if (visited[at(g)]) continue;
-    const double score = score_of(h);
-    if (score > entry.score + 1e-9) {  // stale: the grid filled up since it was offered
-      queue.push({score, rng(), h});
-      continue;
-    }
-    // §4.1 expansion over h: g's frame makes t opposite to h.
-    const int f = q.face(h);
-    const int frame =
-        ((cut.direction[at(h)] + 2 - halfedge_direction(q, labels, 0, t)) % 4 + 4) % 4;
-    const auto& step = kStep[at(cut.direction[at(h)])];
-    const std::array<int, 2> uv = {cut.face_uv[at(f)][0] + step[0],
-                                   cut.face_uv[at(f)][1] + step[1]};
-    const auto cell = grid.find(cell_key(uv));
-    const int count = cell == grid.end() ? 0 : cell->second;
-    place(g, frame, uv, overlap_score[at(f)] + count);
-    ++placed;
-    // In B, h is replaced by g's other half-edges, in order.
-    const int before = prev_b[at(h)];
-    const int after = next_b[at(h)];
-    in_b[at(h)] = false;
-    int last = before;
-    for (int x = q.next(t); x != t; x = q.next(x)) {
-      in_b[at(x)] = true;
-      next_b[at(last)] = x;
-      prev_b[at(x)] = last;
-      last = x;
-    }
-    next_b[at(last)] = after;
-    prev_b[at(after)] = last;
-    b_size += q.degree(g) - 2;
-    try_fusions({before, last});
-    offer(g);
   }
+
+  CutMesh& cut_;
+  const HalfedgeMesh& q_;
+  const FieldLabels& labels_;
+  const CutParams& params_;
+  std::mt19937_64& rng_;
+  std::vector<double> overlap_score_;            // per face
+  std::unordered_map<std::uint64_t, int> grid_;  // faces per (u, v) cell
+  std::vector<bool> visited_;                    // per face: in the patch
+  std::vector<bool> in_b_;                       // per half-edge: on B
+  std::vector<int> next_b_;                      // per half-edge on B: the next one
+  std::vector<int> prev_b_;
+  int b_size_ = 0;
+  int placed_ = 0;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
+};
+
+}  // namespace
+
+CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params) {
+  CutMesh cut;
+  cut.proxy = std::move(proxy);
+  const HalfedgeMesh& q = cut.proxy;
+  const int nf = q.num_faces();
+  if (nf == 0) throw std::logic_error("cut_surface: empty proxy");
+  cut.labels = label_field(q, params.vanishing);
+  std::mt19937_64 rng(params.seed);
+  cut.seed_face = pick_seed_face(q, rng);
+  cut.motorcycle_edges = motorcycle_graph(q, cut.labels, rng);
+  PatchGrower patch(cut, params, rng);
+  patch.start(cut.seed_face, seed_frame(q, cut.labels, cut.seed_face));
+  const int placed = patch.grow();
   if (placed != nf) {
     throw std::logic_error("cut_surface: proxy is not connected (" + std::to_string(placed) +
                            " of " + std::to_string(nf) + " faces reached)");
   }
-
   cut.cut_edge.assign(at(q.num_edges()), false);
-  for (int h = 0; h < nh; ++h) {
+  for (int h = 0; h < q.num_halfedges(); ++h) {
     const int t = q.twin(h);
-    if (t >= 0 && in_b[at(h)] && in_b[at(t)]) cut.cut_edge[at(q.edge(h))] = true;
+    if (t >= 0 && patch.on_boundary(h) && patch.on_boundary(t)) cut.cut_edge[at(q.edge(h))] = true;
   }
   cut.overlap_count.assign(at(nf), 0);
-  for (int f = 0; f < nf; ++f) cut.overlap_count[at(f)] = grid[cell_key(cut.face_uv[at(f)])];
+  for (int f = 0; f < nf; ++f) cut.overlap_count[at(f)] = patch.faces_in_cell(cut.face_uv[at(f)]);
   build_disc(cut);
-  cut.arcs = find_arcs(q, labels, cut.cut_edge);
+  cut.arcs = find_arcs(q, cut.labels, cut.cut_edge);
   return cut;
 }
 
@@ -535,13 +602,13 @@ std::vector<std::string> verify_cut(const CutMesh& cut) {
   std::map<std::pair<int, int>, int> edge_of;
   for (int e = 0; e < q.num_edges(); ++e) {
     const int h = q.edge_halfedge(e);
-    edge_of[{std::min(q.from(h), q.to(h)), std::max(q.from(h), q.to(h))}] = e;
+    edge_of[undirected_edge(q.from(h), q.to(h))] = e;
   }
   for (const CutArc& arc : cut.arcs) {
     for (std::size_t i = 0; i + 1 < arc.vertices.size(); ++i) {
       const int a = arc.vertices[i];
       const int b = arc.vertices[i + 1];
-      auto it = edge_of.find({std::min(a, b), std::max(a, b)});
+      auto it = edge_of.find(undirected_edge(a, b));
       if (it == edge_of.end()) {
         problems.push_back("arc step " + std::to_string(a) + "-" + std::to_string(b) +
                            " is not an edge");

@@ -6,16 +6,16 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "planner/mesh/soup.hpp"
+
 namespace planner {
 
-namespace {
-
-std::uint64_t key(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
+double angle_between(const Vec3& a, const Vec3& b) {
+  const double na = a.norm();
+  const double nb = b.norm();
+  if (na <= 0.0 || nb <= 0.0) return 0.0;
+  return std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0));
 }
-
-}  // namespace
 
 HalfedgeMesh::HalfedgeMesh(PolygonMesh mesh) : mesh_(std::move(mesh)) {
   const std::size_t nf = mesh_.faces.size();
@@ -37,7 +37,7 @@ HalfedgeMesh::HalfedgeMesh(PolygonMesh mesh) : mesh_(std::move(mesh)) {
       face_[static_cast<std::size_t>(h)] = static_cast<int>(f);
       from_[static_cast<std::size_t>(h)] = face[i];
       const int to_vertex = face[(i + 1) % face.size()];
-      if (!directed.emplace(key(face[i], to_vertex), h).second) {
+      if (!directed.emplace(pair_key(face[i], to_vertex), h).second) {
         throw std::logic_error("HalfedgeMesh: half-edge " + std::to_string(face[i]) + "->" +
                                std::to_string(to_vertex) + " used twice (unchecked mesh)");
       }
@@ -46,7 +46,7 @@ HalfedgeMesh::HalfedgeMesh(PolygonMesh mesh) : mesh_(std::move(mesh)) {
   for (std::size_t h = 0; h < nh; ++h) {
     const int a = from_[h];
     const int b = to(static_cast<int>(h));
-    auto it = directed.find(key(b, a));
+    auto it = directed.find(pair_key(b, a));
     if (it != directed.end()) twin_[h] = it->second;
   }
   for (std::size_t h = 0; h < nh; ++h) {
@@ -105,24 +105,12 @@ std::vector<int> HalfedgeMesh::outgoing(int v) const {
 }
 
 double HalfedgeMesh::corner_angle(int h) const {
-  const Vec3 p = position(from(h));
-  const Vec3 a = position(to(h)) - p;
-  const Vec3 b = position(from(prev(h))) - p;
-  const double na = a.norm();
-  const double nb = b.norm();
-  if (na <= 0.0 || nb <= 0.0) return 0.0;
-  return std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0));
+  const Vec3& p = position(from(h));
+  return angle_between(position(to(h)) - p, position(from(prev(h))) - p);
 }
 
 Vec3 HalfedgeMesh::face_normal(int f) const {
-  Vec3 n = Vec3::Zero();
-  const int start = face_start(f);
-  for (int i = 0; i < degree(f); ++i) {
-    const Vec3& a = position(from(start + i));
-    const Vec3& b = position(to(start + i));
-    n += a.cross(b);
-  }
-  return 0.5 * n;
+  return vector_area(mesh_, mesh_.faces[static_cast<std::size_t>(f)]);
 }
 
 Vec3 HalfedgeMesh::face_center(int f) const {

@@ -23,6 +23,9 @@ using Vec3 = Eigen::Vector3d;
 // simulation's garment (simulators/cloth/polygon_mesh.hpp).
 using PolygonMesh = cloth::PolygonMesh;
 
+// The angle between a and b, radians in [0, pi]; 0 when either is zero.
+double angle_between(const Vec3& a, const Vec3& b);
+
 // Half-edge connectivity over a PolygonMesh that is an oriented 2-manifold
 // (with or without boundary). Half-edge ids are dense: the half-edges of face
 // f are face_start(f) .. face_start(f) + degree(f) - 1 in the face's corner

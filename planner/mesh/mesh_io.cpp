@@ -13,7 +13,8 @@
 #include <ostream>
 #include <unordered_map>
 
-#include "planner/common/union_find.hpp"
+#include "planner/common/index.hpp"
+#include "planner/mesh/soup.hpp"
 
 namespace planner {
 
@@ -120,11 +121,6 @@ bool supported_extension(const std::string& ext) {
   return ext == "obj" || ext == "off" || ext == "ply" || ext == "stl";
 }
 
-std::uint64_t pair_key(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
-}
-
 // Caps the messages of one kind at 10 and then says how many were left out.
 class KindReporter {
  public:
@@ -224,23 +220,22 @@ std::optional<PolygonMesh> read_polygon_soup(std::istream& in, std::string_view 
   return mesh;
 }
 
-bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::DiagnosticSink& sink) {
-  const std::size_t errors_before = sink.error_count();
-  const int nv = static_cast<int>(mesh.positions.size());
-  const int nf = static_cast<int>(mesh.faces.size());
-  if (nf == 0) {
-    sink.error(source, 0, 0, "P002",
-               "the mesh has no faces (" + std::to_string(nv) + " vertices); a surface is needed");
-    return false;
-  }
-  {
-    KindReporter bad(sink, source, "P003", "bad coordinates");
-    for (int v = 0; v < nv; ++v) {
-      if (!mesh.positions[static_cast<std::size_t>(v)].allFinite()) {
-        bad.report(vname(v) + " has a coordinate that is not a finite number");
-      }
+namespace {
+
+// P003: coordinates that are not finite numbers.
+void check_coordinates(const PolygonMesh& mesh, const std::string& source,
+                       knitout::DiagnosticSink& sink) {
+  KindReporter bad(sink, source, "P003", "bad coordinates");
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (!mesh.positions[v].allFinite()) {
+      bad.report(vname(static_cast<int>(v)) + " has a coordinate that is not a finite number");
     }
   }
+}
+
+// Faces of less area are degenerate: 1e-14 of the squared diagonal of the
+// finite positions' bounding box, so the test does not depend on the units.
+double area_epsilon(const PolygonMesh& mesh) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 hi = -lo;
   for (const Vec3& p : mesh.positions) {
@@ -248,181 +243,184 @@ bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::Dia
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  const double diagonal = nv > 0 ? (hi - lo).norm() : 0.0;
-  const double area_epsilon = 1e-14 * diagonal * diagonal;
+  const double diagonal = mesh.positions.empty() ? 0.0 : (hi - lo).norm();
+  return 1e-14 * diagonal * diagonal;
+}
 
-  std::vector<bool> usable(static_cast<std::size_t>(nf), true);
-  {
-    KindReporter degenerate(sink, source, "P010", "degenerate faces");
-    for (int f = 0; f < nf; ++f) {
-      const auto& face = mesh.faces[static_cast<std::size_t>(f)];
-      bool range_ok = true;
-      for (int v : face) range_ok = range_ok && v >= 0 && v < nv;
-      if (face.size() < 3 || !range_ok) {
-        degenerate.report(fname(f) + " has " + std::to_string(face.size()) +
-                          " corners; a face needs at least 3 distinct vertices");
-        usable[static_cast<std::size_t>(f)] = false;
-        continue;
-      }
-      std::vector<int> sorted = face;
-      std::sort(sorted.begin(), sorted.end());
-      auto dup = std::adjacent_find(sorted.begin(), sorted.end());
-      if (dup != sorted.end()) {
-        degenerate.report(fname(f) + " uses " + vname(*dup) +
-                          " twice; remove the face or the repeated corner");
-        usable[static_cast<std::size_t>(f)] = false;
-        continue;
-      }
-      Vec3 normal = Vec3::Zero();
-      for (std::size_t i = 0; i < face.size(); ++i) {
-        normal += mesh.positions[static_cast<std::size_t>(face[i])].cross(
-            mesh.positions[static_cast<std::size_t>(face[(i + 1) % face.size()])]);
-      }
-      if (!(0.5 * normal.norm() > area_epsilon)) {
-        degenerate.report(fname(f) + " has zero area (its corners coincide or lie on a line)");
-      }
+// P010: faces with fewer than 3 corners, a corner out of range or used
+// twice, or zero area. Returns per face whether the connectivity checks can
+// use it: all but those with bad corners (a zero-area face still connects).
+std::vector<bool> check_faces(const PolygonMesh& mesh, const std::string& source,
+                              knitout::DiagnosticSink& sink) {
+  const int nv = static_cast<int>(mesh.positions.size());
+  const double epsilon = area_epsilon(mesh);
+  std::vector<bool> usable(mesh.faces.size(), true);
+  KindReporter degenerate(sink, source, "P010", "degenerate faces");
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    const std::string name = fname(static_cast<int>(f));
+    bool range_ok = true;
+    for (int v : face) range_ok = range_ok && v >= 0 && v < nv;
+    if (face.size() < 3 || !range_ok) {
+      degenerate.report(name + " has " + std::to_string(face.size()) +
+                        " corners; a face needs at least 3 distinct vertices");
+      usable[f] = false;
+      continue;
+    }
+    std::vector<int> sorted = face;
+    std::sort(sorted.begin(), sorted.end());
+    auto dup = std::adjacent_find(sorted.begin(), sorted.end());
+    if (dup != sorted.end()) {
+      degenerate.report(name + " uses " + vname(*dup) +
+                        " twice; remove the face or the repeated corner");
+      usable[f] = false;
+      continue;
+    }
+    if (!(vector_area(mesh, face).norm() > epsilon)) {
+      degenerate.report(name + " has zero area (its corners coincide or lie on a line)");
     }
   }
+  return usable;
+}
 
-  // Edge use: directed half-edges and undirected edges with the faces on them.
+// P011 (an edge of more than two faces) and P012 (two faces that run the
+// same way along their common edge), in vertex order so the messages do not
+// depend on hashing.
+void check_edges(const PolygonMesh& mesh, const std::vector<bool>& usable,
+                 const std::string& source, knitout::DiagnosticSink& sink) {
+  // Directed half-edges and undirected edges with the faces on them.
   std::unordered_map<std::uint64_t, std::vector<int>> directed;
   std::unordered_map<std::uint64_t, std::vector<int>> undirected;
-  for (int f = 0; f < nf; ++f) {
-    if (!usable[static_cast<std::size_t>(f)]) continue;
-    const auto& face = mesh.faces[static_cast<std::size_t>(f)];
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (!usable[f]) continue;
+    const auto& face = mesh.faces[f];
     for (std::size_t i = 0; i < face.size(); ++i) {
       const int a = face[i];
       const int b = face[(i + 1) % face.size()];
-      directed[pair_key(a, b)].push_back(f);
-      undirected[pair_key(std::min(a, b), std::max(a, b))].push_back(f);
+      const std::pair<int, int> edge = undirected_edge(a, b);
+      directed[pair_key(a, b)].push_back(static_cast<int>(f));
+      undirected[pair_key(edge.first, edge.second)].push_back(static_cast<int>(f));
     }
   }
-  {
-    KindReporter nonmanifold(sink, source, "P011", "non-manifold edges");
-    KindReporter orientation(sink, source, "P012", "inconsistently oriented edges");
-    // Reported in vertex order, so the messages do not depend on hashing.
-    std::vector<std::uint64_t> keys;
-    keys.reserve(undirected.size());
-    for (const auto& entry : undirected) keys.push_back(entry.first);
-    std::sort(keys.begin(), keys.end());
-    for (const std::uint64_t key : keys) {
-      const std::vector<int>& faces = undirected.at(key);
-      const std::pair<int, int> edge{static_cast<int>(key >> 32),
-                                     static_cast<int>(key & 0xffffffffu)};
-      const std::string ename = "edge between " + vname(edge.first) + " and " + vname(edge.second);
-      if (faces.size() > 2) {
-        std::string list;
-        for (std::size_t i = 0; i < faces.size() && i < 6; ++i) {
-          list += (i == 0 ? "" : ", ") + std::to_string(faces[i] + 1);
-        }
-        if (faces.size() > 6) list += ", ...";
-        nonmanifold.report(ename + " is shared by " + std::to_string(faces.size()) + " faces (" +
-                           list + "); an edge may border at most 2 faces");
-        continue;
+  KindReporter nonmanifold(sink, source, "P011", "non-manifold edges");
+  KindReporter orientation(sink, source, "P012", "inconsistently oriented edges");
+  std::vector<std::uint64_t> keys;
+  keys.reserve(undirected.size());
+  for (const auto& entry : undirected) keys.push_back(entry.first);
+  std::sort(keys.begin(), keys.end());
+  for (const std::uint64_t key : keys) {
+    const std::vector<int>& faces = undirected.at(key);
+    const std::pair<int, int> edge{static_cast<int>(key >> 32),
+                                   static_cast<int>(key & 0xffffffffu)};
+    const std::string ename = "edge between " + vname(edge.first) + " and " + vname(edge.second);
+    if (faces.size() > 2) {
+      std::string list;
+      for (std::size_t i = 0; i < faces.size() && i < 6; ++i) {
+        list += (i == 0 ? "" : ", ") + std::to_string(faces[i] + 1);
       }
-      for (const int dir : {0, 1}) {
-        const int a = dir == 0 ? edge.first : edge.second;
-        const int b = dir == 0 ? edge.second : edge.first;
-        auto it = directed.find(pair_key(a, b));
-        if (it != directed.end() && it->second.size() == 2) {
-          orientation.report(fname(it->second[0]) + " and " + fname(it->second[1]) +
-                             " both run from " + vname(a) + " to " + vname(b) +
-                             ": their orientations disagree; flip one of them so the normals "
-                             "point to the same side");
-        }
+      if (faces.size() > 6) list += ", ...";
+      nonmanifold.report(ename + " is shared by " + std::to_string(faces.size()) + " faces (" +
+                         list + "); an edge may border at most 2 faces");
+      continue;
+    }
+    for (const int dir : {0, 1}) {
+      const int a = dir == 0 ? edge.first : edge.second;
+      const int b = dir == 0 ? edge.second : edge.first;
+      auto it = directed.find(pair_key(a, b));
+      if (it != directed.end() && it->second.size() == 2) {
+        orientation.report(fname(it->second[0]) + " and " + fname(it->second[1]) +
+                           " both run from " + vname(a) + " to " + vname(b) +
+                           ": their orientations disagree; flip one of them so the normals "
+                           "point to the same side");
       }
     }
   }
-  {
-    // A vertex is manifold when its corners form one fan: corners that share
-    // an edge out of the vertex are joined.
-    std::vector<int> corner_start(static_cast<std::size_t>(nf) + 1, 0);
-    for (int f = 0; f < nf; ++f) {
-      corner_start[static_cast<std::size_t>(f) + 1] =
-          corner_start[static_cast<std::size_t>(f)] +
-          static_cast<int>(mesh.faces[static_cast<std::size_t>(f)].size());
-    }
-    UnionFind corners(static_cast<std::size_t>(corner_start.back()));
-    std::unordered_map<std::uint64_t, int> first_corner;
-    std::vector<int> corner_vertex(static_cast<std::size_t>(corner_start.back()), -1);
-    for (int f = 0; f < nf; ++f) {
-      if (!usable[static_cast<std::size_t>(f)]) continue;
-      const auto& face = mesh.faces[static_cast<std::size_t>(f)];
-      const std::size_t n = face.size();
-      for (std::size_t i = 0; i < n; ++i) {
-        const int c = corner_start[static_cast<std::size_t>(f)] + static_cast<int>(i);
-        const int v = face[i];
-        corner_vertex[static_cast<std::size_t>(c)] = v;
-        for (const int w : {face[(i + 1) % n], face[(i + n - 1) % n]}) {
-          auto [it, inserted] = first_corner.emplace(pair_key(v, w), c);
-          if (!inserted) corners.unite(c, it->second);
-        }
-      }
-    }
-    std::vector<int> fan_root(static_cast<std::size_t>(nv), -1);
-    std::vector<int> fans(static_cast<std::size_t>(nv), 0);
-    for (std::size_t c = 0; c < corner_vertex.size(); ++c) {
-      const int v = corner_vertex[c];
-      if (v < 0) continue;
-      const int root = corners.find(static_cast<int>(c));
-      auto& known = fan_root[static_cast<std::size_t>(v)];
-      if (known == -1) {
-        known = root;
-        fans[static_cast<std::size_t>(v)] = 1;
-      } else if (known != root && fans[static_cast<std::size_t>(v)] == 1) {
-        fans[static_cast<std::size_t>(v)] = 2;  // at least two fans
-      }
-    }
-    KindReporter nonmanifold(sink, source, "P013", "non-manifold vertices");
-    KindReporter unreferenced(sink, source, "P015", "unreferenced vertices");
-    for (int v = 0; v < nv; ++v) {
-      if (fans[static_cast<std::size_t>(v)] >= 2) {
-        nonmanifold.report(vname(v) +
-                           " joins surface sheets that share no edge there (a pinch point); "
-                           "split the vertex or connect the sheets");
-      }
-    }
-    std::vector<bool> referenced(static_cast<std::size_t>(nv), false);
-    for (const auto& face : mesh.faces) {
-      for (int v : face) {
-        if (v >= 0 && v < nv) referenced[static_cast<std::size_t>(v)] = true;
-      }
-    }
-    for (int v = 0; v < nv; ++v) {
-      if (!referenced[static_cast<std::size_t>(v)]) {
-        unreferenced.report(vname(v) + " is used by no face; remove it");
+}
+
+// P013 (a vertex whose corners form more than one fan: a pinch point) and
+// P015 (a vertex no face uses).
+void check_vertices(const PolygonMesh& mesh, const std::vector<bool>& usable,
+                    const std::string& source, knitout::DiagnosticSink& sink) {
+  const std::size_t nv = mesh.positions.size();
+  const std::vector<int> corner_start = corner_starts(mesh);
+  UnionFind corners = corner_fans(mesh, corner_start, usable);
+  std::vector<int> fan_root(nv, -1);
+  std::vector<int> fans(nv, 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (!usable[f]) continue;
+    for (std::size_t i = 0; i < mesh.faces[f].size(); ++i) {
+      const int root = corners.find(corner_start[f] + static_cast<int>(i));
+      const std::size_t v = at(mesh.faces[f][i]);
+      if (fan_root[v] == -1) {
+        fan_root[v] = root;
+        fans[v] = 1;
+      } else if (fan_root[v] != root && fans[v] == 1) {
+        fans[v] = 2;  // at least two fans
       }
     }
   }
-  {
-    UnionFind vertices(static_cast<std::size_t>(nv));
-    for (int f = 0; f < nf; ++f) {
-      if (!usable[static_cast<std::size_t>(f)]) continue;
-      const auto& face = mesh.faces[static_cast<std::size_t>(f)];
-      for (std::size_t i = 1; i < face.size(); ++i) vertices.unite(face[0], face[i]);
-    }
-    std::map<int, std::pair<int, int>> components;  // root -> (first face, face count)
-    for (int f = 0; f < nf; ++f) {
-      if (!usable[static_cast<std::size_t>(f)]) continue;
-      const int root = vertices.find(mesh.faces[static_cast<std::size_t>(f)][0]);
-      auto [it, inserted] = components.emplace(root, std::make_pair(f, 0));
-      ++it->second.second;
-    }
-    if (components.size() > 1) {
-      std::vector<std::pair<int, int>> list;
-      for (const auto& [root, info] : components) list.push_back(info);
-      std::sort(list.begin(), list.end());
-      std::string text;
-      for (std::size_t i = 0; i < list.size() && i < 5; ++i) {
-        text += (i == 0 ? "" : "; ") + std::string("one with ") + fname(list[i].first) + " (" +
-                std::to_string(list[i].second) + " faces)";
-      }
-      if (list.size() > 5) text += "; ...";
-      sink.error(source, 0, 0, "P014",
-                 "the mesh has " + std::to_string(components.size()) + " separate components: " +
-                     text + "; cut one garment piece at a time (keep a single component)");
+  KindReporter nonmanifold(sink, source, "P013", "non-manifold vertices");
+  KindReporter unreferenced(sink, source, "P015", "unreferenced vertices");
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (fans[v] >= 2) {
+      nonmanifold.report(vname(static_cast<int>(v)) +
+                         " joins surface sheets that share no edge there (a pinch point); "
+                         "split the vertex or connect the sheets");
     }
   }
+  std::vector<bool> referenced(nv, false);
+  for (const auto& face : mesh.faces) {
+    for (int v : face) {
+      if (v >= 0 && at(v) < nv) referenced[at(v)] = true;
+    }
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!referenced[v])
+      unreferenced.report(vname(static_cast<int>(v)) + " is used by no face; remove it");
+  }
+}
+
+// P014: more than one connected component, each named by its first face.
+void check_components(const PolygonMesh& mesh, const std::vector<bool>& usable,
+                      const std::string& source, knitout::DiagnosticSink& sink) {
+  UnionFind vertices = vertex_components(mesh, usable);
+  std::map<int, std::pair<int, int>> components;  // root -> (first face, face count)
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (!usable[f]) continue;
+    const int root = vertices.find(mesh.faces[f][0]);
+    auto [it, inserted] = components.emplace(root, std::make_pair(static_cast<int>(f), 0));
+    ++it->second.second;
+  }
+  if (components.size() <= 1) return;
+  std::vector<std::pair<int, int>> list;
+  for (const auto& [root, info] : components) list.push_back(info);
+  std::sort(list.begin(), list.end());
+  std::string text;
+  for (std::size_t i = 0; i < list.size() && i < 5; ++i) {
+    text += (i == 0 ? "" : "; ") + std::string("one with ") + fname(list[i].first) + " (" +
+            std::to_string(list[i].second) + " faces)";
+  }
+  if (list.size() > 5) text += "; ...";
+  sink.error(source, 0, 0, "P014",
+             "the mesh has " + std::to_string(components.size()) + " separate components: " + text +
+                 "; cut one garment piece at a time (keep a single component)");
+}
+
+}  // namespace
+
+bool check_mesh(const PolygonMesh& mesh, const std::string& source, knitout::DiagnosticSink& sink) {
+  const std::size_t errors_before = sink.error_count();
+  if (mesh.faces.empty()) {
+    sink.error(source, 0, 0, "P002",
+               "the mesh has no faces (" + std::to_string(mesh.positions.size()) +
+                   " vertices); a surface is needed");
+    return false;
+  }
+  check_coordinates(mesh, source, sink);
+  const std::vector<bool> usable = check_faces(mesh, source, sink);
+  check_edges(mesh, usable, source, sink);
+  check_vertices(mesh, usable, source, sink);
+  check_components(mesh, usable, source, sink);
   return sink.error_count() == errors_before;
 }
 

@@ -8,8 +8,10 @@
 #include <set>
 #include <stdexcept>
 
+#include "planner/common/index.hpp"
 #include "planner/mesh/mesh.hpp"
 #include "planner/mesh/mesh_io.hpp"
+#include "planner/mesh/soup.hpp"
 #include "planner/proxy/remesh.hpp"
 
 namespace planner {
@@ -18,20 +20,9 @@ namespace {
 
 double corner_angle_at(const PolygonMesh& mesh, const std::vector<int>& face, std::size_t i) {
   const std::size_t n = face.size();
-  const Vec3& p = mesh.positions[static_cast<std::size_t>(face[i])];
-  const Vec3 a = mesh.positions[static_cast<std::size_t>(face[(i + 1) % n])] - p;
-  const Vec3 b = mesh.positions[static_cast<std::size_t>(face[(i + n - 1) % n])] - p;
-  const double na = a.norm();
-  const double nb = b.norm();
-  if (na <= 0.0 || nb <= 0.0) return 0.0;
-  return std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0));
-}
-
-double angle_between(const Vec3& a, const Vec3& b) {
-  const double na = a.norm();
-  const double nb = b.norm();
-  if (na <= 0.0 || nb <= 0.0) return 0.0;
-  return std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0));
+  const Vec3& p = mesh.positions[at(face[i])];
+  return angle_between(mesh.positions[at(face[(i + 1) % n])] - p,
+                       mesh.positions[at(face[(i + n - 1) % n])] - p);
 }
 
 std::vector<int> rotate_to(const std::vector<int>& face, std::size_t start) {
@@ -74,23 +65,19 @@ int pair_triangles(PolygonMesh& mesh, int field_iterations) {
     const std::array<int, 4> quad = {a, d, b, c};
     bool convex = true;
     for (int i = 0; i < 4; ++i) {
-      const Vec3& p0 = he.position(quad[static_cast<std::size_t>(i)]);
-      const Vec3& p1 = he.position(quad[static_cast<std::size_t>((i + 1) % 4)]);
-      const Vec3& p2 = he.position(quad[static_cast<std::size_t>((i + 2) % 4)]);
+      const Vec3& p0 = he.position(quad[at(i)]);
+      const Vec3& p1 = he.position(quad[at((i + 1) % 4)]);
+      const Vec3& p2 = he.position(quad[at((i + 2) % 4)]);
       if ((p1 - p0).cross(p2 - p1).dot(n) <= 0) convex = false;
     }
     if (!convex) continue;
-    const Vec3 o = closest_representative(field[static_cast<std::size_t>(b)],
-                                          normals[static_cast<std::size_t>(b)],
-                                          field[static_cast<std::size_t>(a)]) +
-                   field[static_cast<std::size_t>(a)];
+    const Vec3 o =
+        closest_representative(field[at(b)], normals[at(b)], field[at(a)]) + field[at(a)];
     if (o.norm() < 1e-12) continue;
     const Vec3 on = (o - n * n.dot(o)).normalized();
     double score = 0.0;
     for (int i = 0; i < 4; ++i) {
-      score += misalignment(he.position(quad[static_cast<std::size_t>((i + 1) % 4)]) -
-                                he.position(quad[static_cast<std::size_t>(i)]),
-                            on, n);
+      score += misalignment(he.position(quad[at((i + 1) % 4)]) - he.position(quad[at(i)]), on, n);
     }
     // The diagonal should run at 45 degrees to the field.
     score -= misalignment(he.position(b) - he.position(a), on, n);
@@ -104,8 +91,8 @@ int pair_triangles(PolygonMesh& mesh, int field_iterations) {
   for (const Candidate& cand : candidates) {
     const int f1 = he.face(cand.h);
     const int f2 = he.face(he.twin(cand.h));
-    if (used[static_cast<std::size_t>(f1)] || used[static_cast<std::size_t>(f2)]) continue;
-    used[static_cast<std::size_t>(f1)] = used[static_cast<std::size_t>(f2)] = true;
+    if (used[at(f1)] || used[at(f2)]) continue;
+    used[at(f1)] = used[at(f2)] = true;
     const int a = he.from(cand.h);
     const int b = he.to(cand.h);
     faces.push_back({a, he.from(he.prev(he.twin(cand.h))), b, he.from(he.prev(cand.h))});
@@ -130,14 +117,7 @@ bool is_valid_proxy(const PolygonMesh& mesh) {
 
 double total_area(const PolygonMesh& mesh) {
   double area = 0.0;
-  for (const auto& face : mesh.faces) {
-    Vec3 n = Vec3::Zero();
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      n += mesh.positions[static_cast<std::size_t>(face[i])].cross(
-          mesh.positions[static_cast<std::size_t>(face[(i + 1) % face.size()])]);
-    }
-    area += 0.5 * n.norm();
-  }
+  for (const auto& face : mesh.faces) area += vector_area(mesh, face).norm();
   return area;
 }
 
@@ -151,10 +131,9 @@ int split_polygons(PolygonMesh& mesh) {
   // A diagonal must not repeat an edge the mesh already has (it would be
   // shared by three faces then): such corners are passed over.
   std::set<std::pair<int, int>> edges;
-  auto edge_key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
   for (const auto& face : mesh.faces) {
     for (std::size_t i = 0; i < face.size(); ++i)
-      edges.insert(edge_key(face[i], face[(i + 1) % face.size()]));
+      edges.insert(undirected_edge(face[i], face[(i + 1) % face.size()]));
   }
   int split = 0;
   std::vector<std::vector<int>> extra;
@@ -171,31 +150,31 @@ int split_polygons(PolygonMesh& mesh) {
         std::vector<int> f = rotate_to(face, largest);  // the largest corner is f[0]
         if (n == 5) {
           // §4.1: the diagonal that best halves the largest corner.
-          const Vec3& p = mesh.positions[static_cast<std::size_t>(f[0])];
-          const Vec3 next = mesh.positions[static_cast<std::size_t>(f[1])] - p;
-          const Vec3 prev = mesh.positions[static_cast<std::size_t>(f[4])] - p;
-          const Vec3 d2 = mesh.positions[static_cast<std::size_t>(f[2])] - p;
-          const Vec3 d3 = mesh.positions[static_cast<std::size_t>(f[3])] - p;
+          const Vec3& p = mesh.positions[at(f[0])];
+          const Vec3 next = mesh.positions[at(f[1])] - p;
+          const Vec3 prev = mesh.positions[at(f[4])] - p;
+          const Vec3 d2 = mesh.positions[at(f[2])] - p;
+          const Vec3 d3 = mesh.positions[at(f[3])] - p;
           const double imbalance2 = std::abs(angle_between(next, d2) - angle_between(d2, prev));
           const double imbalance3 = std::abs(angle_between(next, d3) - angle_between(d3, prev));
-          const bool free2 = !edges.count(edge_key(f[0], f[2]));
-          const bool free3 = !edges.count(edge_key(f[0], f[3]));
+          const bool free2 = !edges.count(undirected_edge(f[0], f[2]));
+          const bool free3 = !edges.count(undirected_edge(f[0], f[3]));
           if (free2 && (imbalance2 <= imbalance3 || !free3)) {
             extra.push_back({f[0], f[1], f[2]});
             face = {f[0], f[2], f[3], f[4]};
-            edges.insert(edge_key(f[0], f[2]));
+            edges.insert(undirected_edge(f[0], f[2]));
           } else if (free3) {
             extra.push_back({f[0], f[3], f[4]});
             face = {f[0], f[1], f[2], f[3]};
-            edges.insert(edge_key(f[0], f[3]));
+            edges.insert(undirected_edge(f[0], f[3]));
           } else {
             continue;
           }
         } else {
           // Cut a quad off the largest corner; a hexagon becomes two quads.
-          if (edges.count(edge_key(f[0], f[3]))) continue;
+          if (edges.count(undirected_edge(f[0], f[3]))) continue;
           extra.push_back({f[0], f[1], f[2], f[3]});
-          edges.insert(edge_key(f[0], f[3]));
+          edges.insert(undirected_edge(f[0], f[3]));
           std::vector<int> rest = {f[0]};
           rest.insert(rest.end(), f.begin() + 3, f.end());
           face = std::move(rest);
@@ -210,76 +189,82 @@ int split_polygons(PolygonMesh& mesh) {
   return split;
 }
 
+namespace {
+
+// The fallback when no extraction gives a clean proxy: the surface
+// resampled at 0.8 times the target edge and its triangles paired along
+// the field. `why` says what failed.
+void pair_resampled(const PolygonMesh& input, const ProxyParams& params, std::string why,
+                    ProxyResult& result) {
+  result.method = "paired";
+  result.remesh_failure = std::move(why);
+  result.mesh = resample(input, 0.8 * result.edge_mm, 0.8);
+  result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
+}
+
+// The proxy of a surface that is not quad-dominant: field-aligned
+// remeshing, or pairing when no extraction is clean.
+void remesh_proxy(const PolygonMesh& input, const ProxyParams& params, ProxyResult& result) {
+  result.remeshed = true;
+  const double area = total_area(input);
+  result.edge_mm = params.proxy_edge_mm > 0.0 ? params.proxy_edge_mm
+                                              : std::sqrt(area / std::max(1, params.auto_faces));
+  RemeshParams remesh;
+  remesh.orientation_iterations = params.field_iterations;
+  remesh.position_iterations = params.position_iterations;
+  // The extraction can fail at one lattice spacing and not at one a few
+  // percent off (a lattice that folds into an extra handle where the
+  // surface is thin: mannequin at 103 mm, Euler characteristic -1 for 1,
+  // extracts cleanly at 97-103% of the spacing). Nearby spacings are tried
+  // before falling back to pairing triangles; the first failure is kept
+  // to report when none works.
+  const double base = result.edge_mm;
+  std::optional<PolygonMesh> extracted;
+  RemeshStats stats;
+  std::string first_failure;
+  for (const double factor : {1.0, 0.99, 1.01, 0.97, 1.03}) {
+    remesh.edge_mm = base * factor;
+    stats = RemeshStats{};
+    extracted = field_aligned_remesh(input, remesh, stats);
+    ++result.remesh_attempts;
+    if (extracted && is_quad_dominant(*extracted)) break;
+    if (first_failure.empty())
+      first_failure = extracted ? "extracted mesh is not quad-dominant" : stats.failure;
+    extracted.reset();
+  }
+  result.samples = stats.samples;
+  if (!extracted) {
+    pair_resampled(input, params, first_failure, result);
+    return;
+  }
+  result.method = "instant-meshes";
+  result.edge_mm = remesh.edge_mm;
+  result.holes_filled = stats.holes_filled;
+  result.folds_removed = stats.folds_removed;
+  result.mesh = std::move(*extracted);
+}
+
+}  // namespace
+
 ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params) {
   ProxyResult result;
   if (is_quad_dominant(input)) {
     result.mesh = input;
-    double total = 0.0;
-    std::size_t count = 0;
-    for (const auto& face : input.faces) {
-      for (std::size_t i = 0; i < face.size(); ++i) {
-        total += (input.positions[static_cast<std::size_t>(face[(i + 1) % face.size()])] -
-                  input.positions[static_cast<std::size_t>(face[i])])
-                     .norm();
-        ++count;
-      }
-    }
-    result.edge_mm = count > 0 ? total / static_cast<double>(count) : 0.0;
+    result.edge_mm = mean_edge_length(input);
   } else {
-    result.remeshed = true;
-    const double area = total_area(input);
-    result.edge_mm = params.proxy_edge_mm > 0.0 ? params.proxy_edge_mm
-                                                : std::sqrt(area / std::max(1, params.auto_faces));
-    RemeshParams remesh;
-    remesh.orientation_iterations = params.field_iterations;
-    remesh.position_iterations = params.position_iterations;
-    // The extraction can fail at one lattice spacing and not at one a few
-    // percent off (a lattice that folds into an extra handle where the
-    // surface is thin: mannequin at 103 mm, Euler characteristic -1 for 1,
-    // extracts cleanly at 97-103% of the spacing). Nearby spacings are tried
-    // before falling back to pairing triangles; the first failure is kept
-    // to report when none works.
-    const double base = result.edge_mm;
-    std::optional<PolygonMesh> extracted;
-    RemeshStats stats;
-    std::string first_failure;
-    for (const double factor : {1.0, 0.99, 1.01, 0.97, 1.03}) {
-      remesh.edge_mm = base * factor;
-      stats = RemeshStats{};
-      extracted = field_aligned_remesh(input, remesh, stats);
-      ++result.remesh_attempts;
-      if (extracted && is_quad_dominant(*extracted)) break;
-      if (first_failure.empty())
-        first_failure = extracted ? "extracted mesh is not quad-dominant" : stats.failure;
-      extracted.reset();
-    }
-    result.samples = stats.samples;
-    if (extracted) {
-      result.method = "instant-meshes";
-      result.edge_mm = remesh.edge_mm;
-      result.holes_filled = stats.holes_filled;
-      result.folds_removed = stats.folds_removed;
-      result.mesh = std::move(*extracted);
-    } else {
-      result.method = "paired";
-      result.remesh_failure = first_failure;
-      result.mesh = resample(input, 0.8 * result.edge_mm, 0.8);
-      result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
-    }
+    remesh_proxy(input, params, result);
   }
   result.polygons_split = split_polygons(result.mesh);
   if (result.method == "instant-meshes") {
     // A pentagon with two corners on one point splits into a folded quad.
     result.folds_removed += collapse_folded_quads(result.mesh, RemeshParams{}.fold_ratio);
-  }
-  if (result.method == "instant-meshes" && !is_valid_proxy(result.mesh)) {
-    result.method = "paired";
-    result.remesh_failure =
-        "splitting the extracted polygons left a face of more than 4 corners "
-        "or a non-manifold edge";
-    result.mesh = resample(input, 0.8 * result.edge_mm, 0.8);
-    result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
-    result.polygons_split = 0;
+    if (!is_valid_proxy(result.mesh)) {
+      pair_resampled(input, params,
+                     "splitting the extracted polygons left a face of more than 4 corners "
+                     "or a non-manifold edge",
+                     result);
+      result.polygons_split = 0;
+    }
   }
   return result;
 }

@@ -99,7 +99,7 @@ struct ScheduleParams {
   int trials = 100;                      // random knitting orders tried (§7.3)
   double time_budget_s = 0;              // > 0: try orders until this much time has passed instead
   std::uint64_t seed = 1;                // every random choice derives from it and the trial number
-  int threads = 0;                       // 0: all cores
+  int threads = 0;                       // 0: OMP_NUM_THREADS, else all cores
   int max_patch_shift = kMaxPatchShift;  // 0: patches stay where §7.2 put them
   int max_aside = kMaxAside;             // 0: held loops stay where they were made
   // The best random orders refined by improve_order (0: §7.3's random
@@ -181,10 +181,12 @@ std::vector<int> random_patch_order(const Schedule& schedule, std::uint64_t seed
 int improve_order(const Schedule& schedule, std::vector<int>& order, int max_shift, int max_moves,
                   int max_aside = kMaxAside);
 
-// §7.3: tries orders (in parallel; the result depends only on params.seed and
-// the number of trials, not on the threads), refines the params.improve best
-// of them (improve_order) and keeps the one with fewest cuts (ties: the
-// better random order, then the lowest trial number), marks the cut edges.
+// §7.3: tries orders (in parallel on OpenMP threads, each trial into its own
+// slot; the result depends only on params.seed and the number of trials, not
+// on the threads; a time budget runs rounds of one trial per thread until it
+// is spent), refines the params.improve best of them (improve_order) and
+// keeps the one with fewest cuts (ties: the better random order, then the
+// lowest trial number), marks the cut edges.
 void choose_order(Schedule& schedule, const ScheduleParams& params);
 
 // Connected parts once cuts are made; rows in knitting order.

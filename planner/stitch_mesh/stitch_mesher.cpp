@@ -22,684 +22,14 @@
 #include <utility>
 
 #include "planner/common/index.hpp"
+#include "planner/stitch_mesh/stitch_meshing.hpp"
 #include "simulators/cloth/sdf.hpp"
 
 namespace planner {
-namespace {
-
-using Vec3 = Eigen::Vector3d;
-
-std::uint64_t key(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
-}
+namespace stitch_meshing {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// ---------------------------------------------------------------------------
-// Step 1: triangles with a wale direction each, and the row time t.
-
-struct Triangle {
-  std::array<int, 3> v{};
-  int face = -1;
-  Vec3 normal = Vec3::Zero();  // unit
-  double area = 0;
-  Vec3 wale = Vec3::Zero();  // unit, in the triangle's plane
-  Vec3 grad = Vec3::Zero();  // gradient of t
-};
-
-Vec3 face_normal(const LabelledDisc& disc, const std::vector<int>& face) {
-  Vec3 n = Vec3::Zero();
-  for (std::size_t i = 0; i < face.size(); ++i) {
-    n += disc.positions[at(face[i])].cross(disc.positions[at(face[(i + 1) % face.size()])]);
-  }
-  return n;
-}
-
-std::vector<Triangle> triangulate(const LabelledDisc& disc) {
-  std::vector<Triangle> tris;
-  for (std::size_t f = 0; f < disc.faces.size(); ++f) {
-    const std::vector<int>& face = disc.faces[f];
-    const std::vector<int>& dir = disc.directions[f];
-    Vec3 course = Vec3::Zero();
-    Vec3 wale = Vec3::Zero();
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      const Vec3 e = disc.positions[at(face[(i + 1) % face.size()])] - disc.positions[at(face[i])];
-      const double len = e.norm();
-      if (len <= 0) continue;
-      const Vec3 u = e / len;
-      switch (dir[i] & 3) {
-        case 0:
-          course += u;
-          break;
-        case 1:
-          wale += u;
-          break;
-        case 2:
-          course -= u;
-          break;
-        default:
-          wale -= u;
-          break;
-      }
-    }
-    // Quads are split along the shorter diagonal, other polygons as a fan.
-    std::size_t start = 0;
-    if (face.size() == 4) {
-      const double d02 = (disc.positions[at(face[0])] - disc.positions[at(face[2])]).norm();
-      const double d13 = (disc.positions[at(face[1])] - disc.positions[at(face[3])]).norm();
-      if (d13 < d02) start = 1;
-    }
-    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-      Triangle t;
-      t.v = {face[start], face[(start + i) % face.size()], face[(start + i + 1) % face.size()]};
-      t.face = static_cast<int>(f);
-      const Vec3 p0 = disc.positions[at(t.v[0])];
-      const Vec3 n = (disc.positions[at(t.v[1])] - p0).cross(disc.positions[at(t.v[2])] - p0);
-      t.area = 0.5 * n.norm();
-      t.normal = t.area > 0 ? Vec3(n.normalized()) : Vec3(face_normal(disc, face).normalized());
-      // +v is +u turned a quarter turn counter-clockwise about the normal.
-      // Rows run along the course sides, so those set the wale direction;
-      // +v sides are only a fallback (a face labelled by its wale sides alone).
-      const Vec3 w = wale - wale.dot(t.normal) * t.normal;
-      const Vec3 c = course - course.dot(t.normal) * t.normal;
-      if (c.norm() > 1e-12) {
-        t.wale = t.normal.cross(c.normalized());
-      } else if (w.norm() > 1e-12) {
-        t.wale = w.normalized();
-      }
-      tris.push_back(t);
-    }
-  }
-  return tris;
-}
-
-// Gradients of the three hat functions of a triangle.
-std::array<Vec3, 3> hat_gradients(const LabelledDisc& disc, const Triangle& t) {
-  std::array<Vec3, 3> g;
-  for (int i = 0; i < 3; ++i) {
-    const Vec3 e =
-        disc.positions[at(t.v[at((i + 2) % 3)])] - disc.positions[at(t.v[at((i + 1) % 3)])];
-    g[at(i)] = t.area > 0 ? Vec3(t.normal.cross(e) / (2 * t.area)) : Vec3::Zero();
-  }
-  return g;
-}
-
-// Least-squares fit of t to the target gradients (Poisson equation with
-// the cotangent Laplacian), then straightening fits towards unit speed
-// until t settles.
-Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
-                         const StitchMeshParams& params, StitchMeshStats& stats) {
-  const int n = static_cast<int>(disc.positions.size());
-  std::vector<Eigen::Triplet<double>> entries;
-  std::vector<std::array<Vec3, 3>> grads(tris.size());
-  double diagonal = 0;
-  for (std::size_t k = 0; k < tris.size(); ++k) {
-    grads[k] = hat_gradients(disc, tris[k]);
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        const double value = tris[k].area * grads[k][at(i)].dot(grads[k][at(j)]);
-        entries.emplace_back(tris[k].v[at(i)], tris[k].v[at(j)], value);
-        if (i == j) diagonal += value;
-      }
-    }
-  }
-  // A tiny mass term fixes the constant; t is shifted to start at 0 later.
-  const double epsilon = 1e-9 * diagonal / std::max(1, n);
-  for (int i = 0; i < n; ++i) entries.emplace_back(i, i, epsilon);
-  Eigen::SparseMatrix<double> matrix(n, n);
-  matrix.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(matrix);
-  if (solver.info() != Eigen::Success) {
-    throw std::runtime_error("row time: the Laplacian could not be factorised");
-  }
-  std::vector<Vec3> target(tris.size());
-  for (std::size_t k = 0; k < tris.size(); ++k) target[k] = tris[k].wale / params.wale_mm;
-  Eigen::VectorXd t = Eigen::VectorXd::Zero(n);
-  for (int iteration = 0; iteration <= params.straighten_iterations; ++iteration) {
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-    for (std::size_t k = 0; k < tris.size(); ++k) {
-      for (int i = 0; i < 3; ++i) {
-        rhs[tris[k].v[at(i)]] += tris[k].area * grads[k][at(i)].dot(target[k]);
-      }
-    }
-    const Eigen::VectorXd before = t;
-    t = solver.solve(rhs);
-    stats.straighten_fits = iteration;
-    // t is in rows. The fixed point of the straightening (rows of unit
-    // height blended with the labels) is reached when no vertex moves by
-    // more than the tolerance; a shift of the whole of t does not count.
-    const Eigen::ArrayXd moved = (t - before).array();
-    const bool settled =
-        iteration > 0 && (moved - moved.mean()).abs().maxCoeff() < params.straighten_tolerance_rows;
-    for (std::size_t k = 0; k < tris.size(); ++k) {
-      Vec3 g = Vec3::Zero();
-      for (int i = 0; i < 3; ++i) g += t[tris[k].v[at(i)]] * grads[k][at(i)];
-      tris[k].grad = g;
-      // Keep the labelled direction and the fitted one in equal parts, at
-      // unit speed: rows follow the labels and keep their height.
-      Vec3 d = params.label_weight * tris[k].wale;
-      if (g.norm() > 1e-12) d += g.normalized();
-      if (d.norm() > 1e-12) target[k] = d.normalized() / params.wale_mm;
-    }
-    if (settled) break;
-  }
-  // How far the rows' wale direction strays from the labels, by area.
-  double angle_area = 0;
-  double area = 0;
-  for (const Triangle& tri : tris) {
-    if (tri.grad.norm() <= 1e-12 || tri.wale.norm() <= 1e-12) continue;
-    angle_area += tri.area * std::acos(std::clamp(tri.grad.normalized().dot(tri.wale), -1.0, 1.0));
-    area += tri.area;
-  }
-  stats.label_deviation_deg = area > 0 ? angle_area / area * 180.0 / std::numbers::pi : 0.0;
-  t.array() -= t.minCoeff();
-  return t;
-}
-
-// Row placement: t mapped monotonically so that rows are wale_mm tall on
-// average over each stretch of t. Where t is flat (labels that converge or
-// curl keep |grad t| below 1 / wale_mm), equal steps of t would give rows
-// that are too tall; there the mapped value rises faster. Per thin slab of t
-// the height is its area over the length of its level curve; the mapped
-// value at t is the height below t in rows (scaled so there is a whole
-// number of rows). Returns the mapped value per vertex; `bands` receives the
-// number of rows.
-Eigen::VectorXd row_levels(const LabelledDisc& disc, const std::vector<Triangle>& tris,
-                           const Eigen::VectorXd& t, const StitchMeshParams& params, int& bands) {
-  const double t_max = t.maxCoeff();
-  const int slabs = std::max(16, 8 * static_cast<int>(std::ceil(t_max)));
-  const double width = t_max > 0 ? t_max / slabs : 1.0;
-  std::vector<double> area(at(slabs), 0.0);
-  std::vector<double> length(at(slabs + 1), 0.0);  // level curve at slab boundary k
-  for (const Triangle& tri : tris) {
-    std::array<double, 3> v{};
-    std::array<Vec3, 3> p;
-    for (int i = 0; i < 3; ++i) {
-      v[at(i)] = t[tri.v[at(i)]];
-      p[at(i)] = disc.positions[at(tri.v[at(i)])];
-    }
-    const double lo = std::min({v[0], v[1], v[2]});
-    const double hi = std::max({v[0], v[1], v[2]});
-    // Area spread evenly over the triangle's range of t.
-    const int first = std::clamp(static_cast<int>(std::floor(lo / width)), 0, slabs - 1);
-    const int last = std::clamp(static_cast<int>(std::floor(hi / width)), 0, slabs - 1);
-    for (int k = first; k <= last; ++k) {
-      const double a = std::max(lo, k * width);
-      const double b = std::min(hi, (k + 1) * width);
-      area[at(k)] += hi > lo ? tri.area * std::max(0.0, b - a) / (hi - lo) : tri.area;
-    }
-    for (int k = first + 1; k <= last; ++k) {
-      const double level = k * width;
-      std::vector<Vec3> cross;
-      for (int i = 0; i < 3; ++i) {
-        const double va = v[at(i)];
-        const double vb = v[at((i + 1) % 3)];
-        if ((va < level) != (vb < level)) {
-          const double s = (level - va) / (vb - va);
-          cross.push_back((1 - s) * p[at(i)] + s * p[at((i + 1) % 3)]);
-        }
-      }
-      if (cross.size() == 2) length[at(k)] += (cross[1] - cross[0]).norm();
-    }
-  }
-  // Heights in mm per slab, each at most four times what unit speed gives
-  // (near the extremes of t the level curves shrink to points).
-  std::vector<double> below(at(slabs + 1), 0.0);
-  for (int k = 0; k < slabs; ++k) {
-    const double nominal = width * params.wale_mm;
-    const double curve = std::max(length[at(k)], length[at(k + 1)]);
-    double height = curve > 0 ? area[at(k)] / curve : nominal;
-    height = std::clamp(height, 0.25 * nominal, 4.0 * nominal);
-    below[at(k + 1)] = below[at(k)] + height;
-  }
-  const double total = below.back();
-  bands = std::max(1, static_cast<int>(std::lround(total / params.wale_mm)));
-  const double per_row = total > 0 ? total / bands : 1.0;
-  Eigen::VectorXd out(t.size());
-  for (int i = 0; i < t.size(); ++i) {
-    const double x = std::clamp(t[i] / width, 0.0, static_cast<double>(slabs));
-    const int k = std::min(slabs - 1, static_cast<int>(std::floor(x)));
-    const double f = x - k;
-    out[i] = ((1 - f) * below[at(k)] + f * below[at(k + 1)]) / per_row;
-  }
-  return out;
-}
-
-// A row time with an interior extremum has closed level curves round it:
-// the band there is a strip with a hole, which no zip can fill. The
-// least-squares fit can make one even on consistent labels (its curl-free
-// part need not follow the labels' turning everywhere). This levels t so
-// that from every vertex a path runs down to the disc boundary on which t
-// never rises, and another on which t never falls: pits are filled to their
-// spill level and peaks cut to theirs (morphological reconstruction by
-// priority flood from the boundary, alternated until neither changes t).
-// Then every component of {t < c} and of {t > c} reaches the boundary, so
-// no band has a hole. Returns how many vertices changed.
-// The vertices joined to each vertex by a side of the triangles.
-std::vector<std::vector<int>> vertex_neighbours(const std::vector<Triangle>& tris, std::size_t n) {
-  std::vector<std::vector<int>> adjacent(n);
-  std::unordered_set<std::uint64_t> seen;
-  for (const Triangle& tri : tris) {
-    for (int i = 0; i < 3; ++i) {
-      const int a = tri.v[at(i)];
-      const int b = tri.v[at((i + 1) % 3)];
-      if (!seen.insert(key(std::min(a, b), std::max(a, b))).second) continue;
-      adjacent[at(a)].push_back(b);
-      adjacent[at(b)].push_back(a);
-    }
-  }
-  return adjacent;
-}
-
-// Per vertex of the disc: whether it lies on the disc boundary.
-std::vector<bool> on_disc_boundary(const LabelledDisc& disc) {
-  std::unordered_set<std::uint64_t> sides;
-  for (const std::vector<int>& face : disc.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i)
-      sides.insert(key(face[i], face[(i + 1) % face.size()]));
-  }
-  std::vector<bool> on(disc.positions.size(), false);
-  for (const std::vector<int>& face : disc.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      const int a = face[i];
-      const int b = face[(i + 1) % face.size()];
-      if (sides.count(key(b, a))) continue;
-      on[at(a)] = on[at(b)] = true;
-    }
-  }
-  return on;
-}
-
-int level_interior_extrema(const LabelledDisc& disc, const std::vector<Triangle>& tris,
-                           Eigen::VectorXd& t) {
-  const auto n = static_cast<std::size_t>(t.size());
-  const std::vector<std::vector<int>> adjacent = vertex_neighbours(tris, n);
-  std::vector<int> boundary;
-  {
-    const std::vector<bool> on = on_disc_boundary(disc);
-    for (std::size_t v = 0; v < n; ++v) {
-      if (on[v]) boundary.push_back(static_cast<int>(v));
-    }
-  }
-  // One flood: `fill` raises pits (lowest first), otherwise peaks are cut
-  // (highest first). Ties are taken by vertex index, so the result does not
-  // depend on the heap's implementation.
-  auto flood = [&](bool fill) {
-    using Entry = std::pair<double, int>;
-    auto later = [fill](const Entry& a, const Entry& b) {
-      if (a.first != b.first) return fill ? a.first > b.first : a.first < b.first;
-      return a.second > b.second;
-    };
-    std::priority_queue<Entry, std::vector<Entry>, decltype(later)> queue(later);
-    std::vector<bool> closed(n, false);
-    for (int v : boundary) {
-      closed[at(v)] = true;
-      queue.push({t[v], v});
-    }
-    int changed = 0;
-    while (!queue.empty()) {
-      const auto [value, v] = queue.top();
-      queue.pop();
-      for (int w : adjacent[at(v)]) {
-        if (closed[at(w)]) continue;
-        closed[at(w)] = true;
-        if (fill ? t[w] < value : t[w] > value) {
-          t[w] = value;
-          ++changed;
-        }
-        queue.push({t[w], w});
-      }
-    }
-    return changed;
-  };
-  const Eigen::VectorXd before = t;
-  // Filling never lowers and cutting never raises a value, and both are
-  // monotone, so the alternation converges (values are taken from a finite
-  // set); the bound only guards against a bug.
-  for (int round = 0; round < 1000; ++round) {
-    const int raised = flood(true);
-    const int lowered = flood(false);
-    if (raised == 0 && lowered == 0) break;
-    if (round == 999) throw std::logic_error("row time: levelling extrema does not converge");
-  }
-  int changed = 0;
-  for (std::size_t v = 0; v < n; ++v)
-    changed += t[static_cast<Eigen::Index>(v)] != before[static_cast<Eigen::Index>(v)] ? 1 : 0;
-  return changed;
-}
-
-// Saddles on a level (step 2, docs/stitch-mesh.md "Saddles on a level").
-// Near a saddle of t the level curves form an X. A saddle inside a band
-// makes a strip with two bottom and two top chains, which split_folds can
-// only cut between corners of its chains, far from the saddle, so the
-// band's height there ends up in long wale sides; a saddle on the disc
-// boundary (half of one, where a cut runs through it, or a fold of the cut
-// across the rows) makes a strip whose bottom and top differ in length,
-// zipped with a fan of shaping. Held exactly on a level, the saddle is where
-// the level curve meets itself or the boundary: the bands on either side are
-// strips that meet at the saddle, and no strip needs to go round it.
-// The rows are raised or lowered round each saddle among `candidates` by a
-// bump, flat up to `inner_mm` from it and falling smoothly to nothing at
-// `outer_mm` (along the mesh's edges), so that the saddle's value is a
-// whole level; saddles already held stay where they are. A bump is not made
-// where it would turn a vertex inside the disc into an extremum, stop a held
-// saddle being one, or bring a neighbour of a held saddle onto its level.
-// Returns the level per vertex (-1 for none).
-std::vector<int> pin_saddles(const LabelledDisc& disc, const std::vector<Triangle>& tris,
-                             Eigen::VectorXd& rows, int bands, double inner_mm, double outer_mm,
-                             const std::vector<bool>& candidates, int& pinned) {
-  const auto n = static_cast<std::size_t>(rows.size());
-  std::vector<int> pin(n, -1);
-  pinned = 0;
-  if (bands < 2 || !(outer_mm > inner_mm) || candidates.empty()) return pin;
-  const std::vector<Vec3>& positions = disc.positions;
-  std::vector<std::vector<std::pair<int, int>>> link(n);  // the side opposite v, per triangle
-  for (const Triangle& tri : tris) {
-    for (int i = 0; i < 3; ++i) {
-      link[at(tri.v[at(i)])].push_back({tri.v[at((i + 1) % 3)], tri.v[at((i + 2) % 3)]});
-    }
-  }
-  const std::vector<std::vector<int>> adjacent = vertex_neighbours(tris, n);
-  const std::vector<bool> boundary = on_disc_boundary(disc);
-  // Sign changes of the rows round v (ties broken by vertex index, as a
-  // hair's shift would): 2 at a regular inner vertex, 0 or 1 on the
-  // boundary; more at a saddle.
-  auto above = [&](int a, int v) { return rows[a] != rows[v] ? rows[a] > rows[v] : a > v; };
-  auto sign_changes = [&](int v) {
-    int changes = 0;
-    for (const auto& [a, b] : link[at(v)]) changes += above(a, v) != above(b, v) ? 1 : 0;
-    return changes;
-  };
-  auto is_saddle = [&](int v) { return sign_changes(v) >= (boundary[at(v)] ? 2 : 4); };
-  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
-  for (std::size_t v0 = 0; v0 < n; ++v0) {
-    const int s = static_cast<int>(v0);
-    const int k = static_cast<int>(std::lround(rows[s]));
-    if (!candidates[v0] || k < 1 || k >= bands || !is_saddle(s)) continue;
-    // Vertices within outer_mm along the edges; none held within inner_mm.
-    std::vector<int> reached;
-    using Entry = std::pair<double, int>;
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-    dist[at(s)] = 0;
-    queue.push({0.0, s});
-    bool clear = true;
-    while (!queue.empty()) {
-      const auto [d, v] = queue.top();
-      queue.pop();
-      if (d > dist[at(v)]) continue;
-      reached.push_back(v);
-      if (pin[at(v)] >= 0 && d < inner_mm) clear = false;
-      for (int w : adjacent[at(v)]) {
-        const double e = d + (positions[at(w)] - positions[at(v)]).norm();
-        if (e < outer_mm && e < dist[at(w)]) {
-          dist[at(w)] = e;
-          queue.push({e, w});
-        }
-      }
-    }
-    if (clear) {
-      const double delta = k - rows[s];
-      std::vector<double> before;
-      for (int v : reached) {
-        before.push_back(rows[v]);
-        if (pin[at(v)] >= 0) continue;
-        const double x = std::clamp((dist[at(v)] - inner_mm) / (outer_mm - inner_mm), 0.0, 1.0);
-        rows[v] += delta * (1 - x * x * (3 - 2 * x));
-      }
-      rows[s] = k;
-      pin[at(s)] = k;
-      bool ok = true;
-      for (int v : reached) {
-        if (pin[at(v)] >= 0) {
-          ok = ok && is_saddle(v);
-          for (int w : adjacent[at(v)]) ok = ok && std::abs(rows[w] - pin[at(v)]) > 1e-6;
-        }
-        for (int w : adjacent[at(v)]) ok = ok && (boundary[at(w)] || sign_changes(w) > 0);
-      }
-      if (ok) {
-        ++pinned;
-      } else {
-        pin[at(s)] = -1;
-        for (std::size_t i = 0; i < reached.size(); ++i) rows[reached[i]] = before[i];
-      }
-    }
-    for (int v : reached) dist[at(v)] = std::numeric_limits<double>::infinity();
-  }
-  return pin;
-}
-
-// ---------------------------------------------------------------------------
-// Step 2: pieces of triangles between consecutive levels.
-
-struct Pieces {
-  std::vector<Vec3> position;    // piece vertices: input vertices, then level crossings
-  std::vector<int> start{0};     // piece p: half-edges start[p] .. start[p+1]-1
-  std::vector<int> band;         // per piece
-  std::vector<int> tri;          // per piece
-  std::vector<int> from;         // per half-edge
-  std::vector<int> level;        // per half-edge: level index of an isoline side, else -1
-  std::vector<int> source_face;  // per half-edge on the disc boundary: input face, else -1
-  std::vector<int> source_side;  // ... and its side
-  std::vector<int> twin;         // per half-edge, -1 if none
-  std::vector<int> piece;        // per half-edge
-  std::vector<bool> pinned;      // per input vertex: a saddle of t held on a level
-
-  int next(int h) const {
-    const int p = piece[at(h)];
-    return h + 1 < start[at(p) + 1] ? h + 1 : start[at(p)];
-  }
-  int to(int h) const { return from[at(next(h))]; }
-  bool is_pinned(int v) const { return at(v) < pinned.size() && pinned[at(v)]; }
-  double length(int h) const { return (position[at(to(h))] - position[at(from[at(h)])]).norm(); }
-};
-
-void link_twins(Pieces& out) {
-  out.twin.assign(out.from.size(), -1);
-  std::unordered_map<std::uint64_t, int> half;
-  half.reserve(out.from.size());
-  for (int h = 0; h < static_cast<int>(out.from.size()); ++h)
-    half[key(out.from[at(h)], out.to(h))] = h;
-  for (int h = 0; h < static_cast<int>(out.from.size()); ++h) {
-    auto it = half.find(key(out.to(h), out.from[at(h)]));
-    if (it != half.end()) out.twin[at(h)] = it->second;
-  }
-}
-
-// `pin` holds, per input vertex, the level a saddle of t is held on (-1 for
-// none): such a vertex lies on its level, a corner of the pieces of both
-// bands, and the level curves through it meet there.
-Pieces slice(const LabelledDisc& disc, const std::vector<Triangle>& tris, const Eigen::VectorXd& t,
-             double spacing, int bands, const std::vector<int>& pin) {
-  Pieces out;
-  out.position = disc.positions;
-  out.pinned.assign(disc.positions.size(), false);
-  for (std::size_t v = 0; v < pin.size(); ++v) out.pinned[v] = pin[v] >= 0;
-  auto pin_of = [&](int v) { return pin.empty() ? -1 : pin[at(v)]; };
-  // Directed input edges that are sides of input faces on the boundary.
-  std::unordered_map<std::uint64_t, std::pair<int, int>> directed;
-  for (std::size_t f = 0; f < disc.faces.size(); ++f) {
-    const std::vector<int>& face = disc.faces[f];
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      directed[key(face[i], face[(i + 1) % face.size()])] = {static_cast<int>(f),
-                                                             static_cast<int>(i)};
-    }
-  }
-  // Values a hair off the levels, so no vertex lies on one.
-  std::vector<double> value(at(static_cast<int>(t.size())));
-  for (int i = 0; i < t.size(); ++i) {
-    double x = t[i] / spacing;
-    const double nearest = std::round(x);
-    if (pin_of(i) >= 0) {
-      x = pin_of(i);
-    } else if (std::abs(x - nearest) < 1e-6) {
-      x = nearest + 2e-6;
-    }
-    value[at(i)] = x;
-  }
-  auto band_of = [&](double x) {
-    return std::clamp(static_cast<int>(std::floor(x)), 0, bands - 1);
-  };
-  // A pinned vertex on level k belongs to bands k - 1 and k.
-  auto lowest_band = [&](int v) { return pin_of(v) >= 0 ? pin_of(v) - 1 : band_of(value[at(v)]); };
-  auto highest_band = [&](int v) { return pin_of(v) >= 0 ? pin_of(v) : band_of(value[at(v)]); };
-  std::map<std::tuple<int, int, int>, int> crossings;
-  auto get_crossing = [&](int a, int b, int level) {
-    const int lo = std::min(a, b);
-    const int hi = std::max(a, b);
-    auto [it, inserted] = crossings.emplace(std::make_tuple(lo, hi, level), 0);
-    if (inserted) {
-      const double s = (level - value[at(lo)]) / (value[at(hi)] - value[at(lo)]);
-      it->second = static_cast<int>(out.position.size());
-      out.position.push_back((1 - s) * disc.positions[at(lo)] + s * disc.positions[at(hi)]);
-    }
-    return it->second;
-  };
-  struct Corner {
-    int vertex;
-    int edge;     // triangle side (0..2) of a crossing, -1 for an input vertex
-    int level;    // of a crossing or a pinned vertex
-    bool pinned;  // an input vertex on `level`
-  };
-  for (std::size_t k = 0; k < tris.size(); ++k) {
-    const Triangle& tri = tris[k];
-    int lo = bands;
-    int hi = -1;
-    for (int v : tri.v) {
-      lo = std::min(lo, lowest_band(v));
-      hi = std::max(hi, highest_band(v));
-    }
-    for (int b = lo; b <= hi; ++b) {
-      std::vector<Corner> corners;
-      for (int i = 0; i < 3; ++i) {
-        const int p = tri.v[at(i)];
-        const int q = tri.v[at((i + 1) % 3)];
-        if (lowest_band(p) == b || highest_band(p) == b) {
-          corners.push_back({p, -1, pin_of(p), pin_of(p) >= 0});
-        }
-        const double vp = value[at(p)];
-        const double vq = value[at(q)];
-        // Levels b (bottom) and b + 1 (top) crossed by p -> q, in travel
-        // order (not the level of a pinned end: the curve passes through it).
-        std::vector<int> levels;
-        for (int level : {b, b + 1}) {
-          if (level <= 0 || level >= bands || level == pin_of(p) || level == pin_of(q)) continue;
-          if ((vp < level) != (vq < level)) levels.push_back(level);
-        }
-        if (levels.size() == 2 && vp > vq) std::swap(levels[0], levels[1]);
-        for (int level : levels) corners.push_back({get_crossing(p, q, level), i, level, false});
-      }
-      if (corners.size() < 3) continue;
-      const int piece = static_cast<int>(out.band.size());
-      out.band.push_back(b);
-      out.tri.push_back(static_cast<int>(k));
-      for (std::size_t c = 0; c < corners.size(); ++c) {
-        const Corner& a = corners[c];
-        const Corner& z = corners[(c + 1) % corners.size()];
-        out.from.push_back(a.vertex);
-        out.piece.push_back(piece);
-        int level = -1;
-        int side = -1;  // triangle side the half-edge lies on
-        const bool a_on = a.edge >= 0 || a.pinned;
-        const bool z_on = z.edge >= 0 || z.pinned;
-        if (a_on && z_on && a.level == z.level && !(a.pinned && z.pinned) &&
-            (a.pinned || z.pinned || a.edge != z.edge)) {
-          level = a.level;
-        } else if (a.edge >= 0) {
-          side = a.edge;
-        } else if (z.edge >= 0) {
-          side = z.edge;
-        } else {
-          // Two input vertices: the side that starts at a.
-          for (int i = 0; i < 3; ++i) {
-            if (tri.v[at(i)] == a.vertex) side = i;
-          }
-        }
-        out.level.push_back(level);
-        int source_face = -1;
-        int source_side = -1;
-        if (side >= 0) {
-          const int p = tri.v[at(side)];
-          const int q = tri.v[at((side + 1) % 3)];
-          if (directed.find(key(q, p)) == directed.end()) {
-            auto it = directed.find(key(p, q));
-            if (it != directed.end()) {
-              source_face = it->second.first;
-              source_side = it->second.second;
-            }
-          }
-        }
-        out.source_face.push_back(source_face);
-        out.source_side.push_back(source_side);
-      }
-      out.start.push_back(static_cast<int>(out.from.size()));
-    }
-  }
-  link_twins(out);
-  return out;
-}
-
-// The larger t at which a + t e is `radius` from `centre`, or nullopt when
-// the line misses that sphere (or e is zero).
-std::optional<double> sphere_exit(const Vec3& a, const Vec3& e, const Vec3& centre, double radius) {
-  const Vec3 g = a - centre;
-  const double ee = e.dot(e);
-  const double ge = g.dot(e);
-  const double root = ge * ge - ee * (g.dot(g) - radius * radius);
-  if (!(ee > 0) || root < 0) return std::nullopt;
-  return (-ge + std::sqrt(root)) / ee;
-}
-
-// A point to add on a half-edge of the disc boundary: at parameter s from its start.
-struct HalfedgeSplit {
-  int halfedge = -1;
-  double s = 0;
-  Vec3 point = Vec3::Zero();
-};
-
-// The pieces with points added on boundary half-edges (each split half-edge
-// becomes two with the same origin; boundary half-edges have no twin).
-Pieces split_halfedges(const Pieces& in, std::vector<HalfedgeSplit> splits) {
-  std::sort(splits.begin(), splits.end(), [](const HalfedgeSplit& a, const HalfedgeSplit& b) {
-    return std::tie(a.halfedge, a.s) < std::tie(b.halfedge, b.s);
-  });
-  Pieces out;
-  out.position = in.position;
-  out.band = in.band;
-  out.tri = in.tri;
-  out.pinned = in.pinned;
-  out.start.assign(1, 0);
-  std::size_t next_split = 0;
-  for (std::size_t p = 0; p + 1 < in.start.size(); ++p) {
-    for (int h = in.start[p]; h < in.start[p + 1]; ++h) {
-      auto push = [&](int from) {
-        out.from.push_back(from);
-        out.level.push_back(in.level[at(h)]);
-        out.source_face.push_back(in.source_face[at(h)]);
-        out.source_side.push_back(in.source_side[at(h)]);
-        out.piece.push_back(static_cast<int>(p));
-      };
-      push(in.from[at(h)]);
-      while (next_split < splits.size() && splits[next_split].halfedge == h) {
-        out.position.push_back(splits[next_split].point);
-        push(static_cast<int>(out.position.size()) - 1);
-        ++next_split;
-      }
-    }
-    out.start.push_back(static_cast<int>(out.from.size()));
-  }
-  link_twins(out);
-  return out;
-}
-
-int find(std::vector<int>& parent, int x) {
-  while (parent[at(x)] != x) {
-    parent[at(x)] = parent[at(parent[at(x)])];
-    x = parent[at(x)];
-  }
-  return x;
 }
 
 // ---------------------------------------------------------------------------
@@ -721,69 +51,21 @@ constexpr double kSplitBalance = 2.0;
 constexpr double kLopsidedRatio = 1.3;
 constexpr double kLopsidedWales = 20.0;
 
-// Issue 8 counts sides within 15% of their target length. A boundary run's
-// sides are placed so that fewest fall outside (each costs this much more
-// than its squared relative error): with 1, 0.05 (the zip's outside_cost) or
-// points every course / 8, 16 or 32, all 38 shared meshes met every figure
-// (docs/stitch-mesh.md, step 3).
-constexpr double kLengthTolerance = 0.15;
+// A boundary run's sides are placed so that fewest fall more than
+// kLengthTolerance off their target (each costs this much more than its
+// squared relative error): with 1, 0.05 (the zip's outside_cost) or points
+// every course / 8, 16 or 32, all 38 shared meshes met the size targets of
+// the shared-mesh test (docs/stitch-mesh.md, step 3).
 constexpr double kBoundaryOutsideCost = 1.0;
-
-// The cost of a side whose length is off its target by the fraction `off`:
-// its square, and `outside` more if it is over kLengthTolerance.
-double length_cost(double off, double outside) {
-  return off * off + (std::abs(off) > kLengthTolerance ? outside : 0.0);
-}
-
-enum class Side : std::uint8_t { Low, High, Wale };
-
-struct Run {
-  Side side = Side::Wale;
-  bool level = false;          // an isoline (shared with the next strip), not the disc boundary
-  std::vector<int> halfedges;  // in loop order
-  double length = 0;
-};
-
-struct Chain {
-  Side side = Side::Wale;
-  std::vector<Run> runs;
-};
-
-double chain_length(const Chain& chain) {
-  double length = 0;
-  for (const Run& r : chain.runs) length += r.length;
-  return length;
-}
-
-// A chain of disc boundary only (no level curve).
-bool boundary_only(const Chain& chain) {
-  return std::none_of(chain.runs.begin(), chain.runs.end(), [](const Run& r) { return r.level; });
-}
-
-// Neighbouring boundary runs of a chain are one stretch of boundary: join
-// them into one run (isoline runs stay apart).
-void join_boundary_runs(Chain& chain) {
-  std::vector<Run> joined;
-  for (Run& r : chain.runs) {
-    if (!joined.empty() && !joined.back().level && !r.level) {
-      joined.back().halfedges.insert(joined.back().halfedges.end(), r.halfedges.begin(),
-                                     r.halfedges.end());
-      joined.back().length += r.length;
-    } else {
-      joined.push_back(std::move(r));
-    }
-  }
-  chain.runs = std::move(joined);
-}
 
 struct Builder {
   const LabelledDisc& disc;
   const StitchMeshParams& params;
-  const Pieces& pieces;
+  const BandSlices& slices;
   StitchMesh mesh;
-  std::unordered_map<int, int> anchor;  // piece vertex -> stitch vertex
-  // Level curve (by any of its undirected piece edges) -> its stitch vertices
-  // in the order of the first strip that sampled it, and that order's first piece vertex.
+  std::unordered_map<int, int> anchor;  // slice vertex -> stitch vertex
+  // Level curve (by any of its undirected slice edges) -> its stitch vertices
+  // in the order of the first strip that sampled it, and that order's first slice vertex.
   std::unordered_map<std::uint64_t, int> curve_of_edge;
   std::vector<std::vector<int>> curve_samples;
   std::vector<int> curve_first;
@@ -793,24 +75,22 @@ struct Builder {
   std::unordered_set<std::uint64_t> shaped_below;
   // Course-out sides (as the row above walks them) -> the face below.
   std::unordered_map<std::uint64_t, std::size_t> face_below;
-  // Level curve (by any of its undirected piece edges) -> fewest segments.
+  // Level curve (by any of its undirected slice edges) -> fewest segments.
   std::unordered_map<std::uint64_t, int> min_segments;
-  // Points to add on boundary half-edges, for row ends (end_rows_in_wale_sides).
-  std::vector<HalfedgeSplit> tip_splits;
 
-  int stitch_vertex(int piece_vertex) {
-    auto [it, inserted] = anchor.emplace(piece_vertex, 0);
+  int stitch_vertex(int slice_vertex) {
+    auto [it, inserted] = anchor.emplace(slice_vertex, 0);
     if (inserted) {
       it->second = static_cast<int>(mesh.positions.size());
-      mesh.positions.push_back(pieces.position[at(piece_vertex)]);
+      mesh.positions.push_back(slices.position(slice_vertex));
     }
     return it->second;
   }
 
   std::int32_t arc_of(int h) const {
-    const int f = pieces.source_face[at(h)];
+    const int f = slices.source_face[at(h)];
     if (f < 0 || disc.arcs.empty()) return kNoArc;
-    return disc.arcs[at(f)][at(pieces.source_side[at(h)])];
+    return disc.arcs[at(f)][at(slices.source_side[at(h)])];
   }
 
   // A boundary run's length in straight steps of course_mm: a jagged cut
@@ -819,9 +99,9 @@ struct Builder {
   double straight_length(const Run& run) const {
     const std::vector<double> along = lengths_along(run.halfedges);
     const std::vector<double> walk = straight_walk(run.halfedges, along, params.course_mm);
-    const Vec3 last = walk.empty() ? pieces.position[at(pieces.from[at(run.halfedges.front())])]
+    const Vec3 last = walk.empty() ? slices.position(slices.from(run.halfedges.front()))
                                    : point_along(run.halfedges, along, walk.back());
-    const Vec3 end = pieces.position[at(pieces.to(run.halfedges.back()))];
+    const Vec3 end = slices.position(slices.to(run.halfedges.back()));
     return static_cast<double>(walk.size()) * params.course_mm + (end - last).norm();
   }
 
@@ -834,7 +114,7 @@ struct Builder {
   std::vector<double> lengths_along(const std::vector<int>& halfedges) const {
     std::vector<double> along{0};
     for (int h : halfedges) {
-      along.push_back(along.back() + pieces.length(h));
+      along.push_back(along.back() + slices.length(h));
     }
     return along;
   }
@@ -846,8 +126,8 @@ struct Builder {
     while (k + 1 < halfedges.size() && along[k + 1] < t) ++k;
     const double span = along[k + 1] - along[k];
     const double w = span > 0 ? std::clamp((t - along[k]) / span, 0.0, 1.0) : 0.0;
-    return (1 - w) * pieces.position[at(pieces.from[at(halfedges[k])])] +
-           w * pieces.position[at(pieces.to(halfedges[k]))];
+    return (1 - w) * slices.position(slices.from(halfedges[k])) +
+           w * slices.position(slices.to(halfedges[k]));
   }
 
   // Arc lengths of the points of a walk along a polyline that steps `step`
@@ -855,10 +135,10 @@ struct Builder {
   std::vector<double> straight_walk(const std::vector<int>& halfedges,
                                     const std::vector<double>& along, double step) const {
     std::vector<double> out;
-    Vec3 last = pieces.position[at(pieces.from[at(halfedges.front())])];
+    Vec3 last = slices.position(slices.from(halfedges.front()));
     for (std::size_t k = 0; k < halfedges.size(); ++k) {
-      const Vec3 a = pieces.position[at(pieces.from[at(halfedges[k])])];
-      const Vec3 e = pieces.position[at(pieces.to(halfedges[k]))] - a;
+      const Vec3 a = slices.position(slices.from(halfedges[k]));
+      const Vec3 e = slices.position(slices.to(halfedges[k])) - a;
       double from = 0;
       while (true) {
         // The farther point of this half-edge `step` from the last one.
@@ -886,8 +166,8 @@ struct Builder {
     std::vector<Vec3> point;
     std::vector<double> arc;
     for (std::size_t k = 0; k < halfedges.size(); ++k) {
-      const Vec3 a = pieces.position[at(pieces.from[at(halfedges[k])])];
-      const Vec3 b = pieces.position[at(pieces.to(halfedges[k]))];
+      const Vec3 a = slices.position(slices.from(halfedges[k]));
+      const Vec3 b = slices.position(slices.to(halfedges[k]));
       const int parts =
           std::max(1, static_cast<int>(std::ceil((along[k + 1] - along[k]) / spacing)));
       for (int i = 0; i < parts; ++i) {
@@ -896,7 +176,7 @@ struct Builder {
         arc.push_back(along[k] + w * (along[k + 1] - along[k]));
       }
     }
-    point.push_back(pieces.position[at(pieces.to(halfedges.back()))]);
+    point.push_back(slices.position(slices.to(halfedges.back())));
     arc.push_back(along.back());
     const std::size_t m = point.size();
     // A side spans at most this much of the run's length.
@@ -949,7 +229,7 @@ struct Builder {
       std::vector<double> sides = straight_sides(halfedges, along, n);
       if (!sides.empty()) at_length = std::move(sides);
     }
-    std::vector<int> out{stitch_vertex(pieces.from[at(halfedges.front())])};
+    std::vector<int> out{stitch_vertex(slices.from(halfedges.front()))};
     for (int i = 1; i <= n; ++i) {
       const double s = i < n ? at_length[at(i - 1)] : total;
       const double mid = 0.5 * ((i > 1 ? at_length[at(i - 2)] : 0.0) + s);
@@ -957,7 +237,7 @@ struct Builder {
       while (m + 1 < halfedges.size() && along[m + 1] < mid) ++m;
       if (arcs != nullptr) arcs->push_back(arc_of(halfedges[m]));
       if (i == n) {
-        out.push_back(stitch_vertex(pieces.to(halfedges.back())));
+        out.push_back(stitch_vertex(slices.to(halfedges.back())));
         break;
       }
       out.push_back(static_cast<int>(mesh.positions.size()));
@@ -967,8 +247,8 @@ struct Builder {
   }
 
   std::uint64_t undirected(int h) const {
-    const int a = pieces.from[at(h)];
-    const int b = pieces.to(h);
+    const int a = slices.from(h);
+    const int b = slices.to(h);
     return key(std::min(a, b), std::max(a, b));
   }
 
@@ -984,12 +264,12 @@ struct Builder {
     if (it == curve_of_edge.end()) {
       const int id = static_cast<int>(curve_samples.size());
       curve_samples.push_back(sample(run.halfedges, nullptr, n));
-      curve_first.push_back(pieces.from[at(run.halfedges.front())]);
+      curve_first.push_back(slices.from(run.halfedges.front()));
       for (int h : run.halfedges) curve_of_edge[undirected(h)] = id;
       return curve_samples.back();
     }
     std::vector<int> samples = curve_samples[at(it->second)];
-    if (curve_first[at(it->second)] != pieces.from[at(run.halfedges.front())]) {
+    if (curve_first[at(it->second)] != slices.from(run.halfedges.front())) {
       std::reverse(samples.begin(), samples.end());
     }
     return samples;
@@ -1137,294 +417,18 @@ struct Builder {
     mesh.faces.push_back(std::move(face));
   }
 
-  std::vector<Run> loop_runs(const std::vector<int>& loop, int band, const Eigen::VectorXd&,
-                             const std::vector<Triangle>& tris) {
-    std::vector<Run> runs;
-    for (int h : loop) {
-      Run piece;
-      const double length = pieces.length(h);
-      const int level = pieces.level[at(h)];
-      if (level >= 0) {
-        piece.level = true;
-        piece.side = level == band ? Side::Low : Side::High;
-      } else {
-        // §6.2: the side's direction against the row direction.
-        const Triangle& tri = tris[at(pieces.tri[at(pieces.piece[at(h)])])];
-        const Vec3 e = pieces.position[at(pieces.to(h))] - pieces.position[at(pieces.from[at(h)])];
-        const Vec3 outward = e.cross(tri.normal);
-        const double c = tri.grad.norm() > 0 && outward.norm() > 0
-                             ? tri.grad.normalized().dot(outward.normalized())
-                             : 0.0;
-        piece.side = c > params.side_cosine    ? Side::High
-                     : c < -params.side_cosine ? Side::Low
-                                               : Side::Wale;
-      }
-      // A level curve through a pinned saddle is two runs there, so the
-      // saddle is a stitch vertex of both (it is where four runs meet).
-      const bool breaks = piece.level && pieces.is_pinned(pieces.from[at(h)]);
-      if (!runs.empty() && runs.back().level == piece.level && runs.back().side == piece.side &&
-          !breaks) {
-        runs.back().halfedges.push_back(h);
-        runs.back().length += length;
-      } else {
-        piece.halfedges.push_back(h);
-        piece.length = length;
-        runs.push_back(std::move(piece));
-      }
-    }
-    if (runs.size() > 1 && runs.front().level == runs.back().level &&
-        runs.front().side == runs.back().side &&
-        !(runs.front().level &&
-          pieces.is_pinned(pieces.from[at(runs.front().halfedges.front())]))) {
-      runs.back().halfedges.insert(runs.back().halfedges.end(), runs.front().halfedges.begin(),
-                                   runs.front().halfedges.end());
-      runs.back().length += runs.front().length;
-      runs.erase(runs.begin());
-    }
-    return runs;
-  }
-
-  // Groups runs into chains: short boundary course runs become wale; a wale
-  // run between two chains of one kind joins them.
-  std::vector<Chain> chains(std::vector<Run> runs) {
-    for (Run& run : runs) {
-      if (!run.level && run.side != Side::Wale && run.length < 0.5 * params.course_mm) {
-        run.side = Side::Wale;
-      }
-    }
-    std::vector<Chain> out;
-    auto merge_same = [&]() {
-      std::vector<Chain> merged;
-      for (Chain& c : out) {
-        if (!merged.empty() && merged.back().side == c.side) {
-          for (Run& r : c.runs) merged.back().runs.push_back(std::move(r));
-        } else {
-          merged.push_back(std::move(c));
-        }
-      }
-      if (merged.size() > 1 && merged.front().side == merged.back().side) {
-        for (Run& r : merged.front().runs) merged.back().runs.push_back(std::move(r));
-        merged.erase(merged.begin());
-      }
-      out = std::move(merged);
-    };
-    for (Run& run : runs) {
-      Chain c;
-      c.side = run.side;
-      c.runs.push_back(std::move(run));
-      out.push_back(std::move(c));
-    }
-    merge_same();
-    bool changed = true;
-    while (changed && out.size() > 2) {
-      changed = false;
-      for (std::size_t i = 0; i < out.size(); ++i) {
-        const Chain& before = out[(i + out.size() - 1) % out.size()];
-        const Chain& after = out[(i + 1) % out.size()];
-        if (out[i].side == Side::Wale && before.side == after.side) {
-          out[i].side = before.side;
-          changed = true;
-        }
-      }
-      merge_same();
-      // A short stretch of boundary facing up or down between chains of the
-      // other kind is a step of a jagged cut, not a row end: a wale side.
-      if (!changed && out.size() > 2) {
-        for (Chain& c : out) {
-          if (c.side == Side::Wale) continue;
-          if (boundary_only(c) && chain_length(c) < params.step_mm_factor * params.wale_mm) {
-            c.side = Side::Wale;
-            changed = true;
-            break;
-          }
-        }
-        merge_same();
-      }
-      // Still more than one chain of a kind: the boundary folds against the
-      // rows. The shortest boundary-only course chain gives way first (it
-      // joins its neighbours' kind, or becomes a side).
-      int lows = 0;
-      for (const Chain& c : out) lows += c.side == Side::Low;
-      if (!changed && lows > 1) {
-        double shortest = std::numeric_limits<double>::infinity();
-        Chain* pick = nullptr;
-        for (Chain& c : out) {
-          if (c.side == Side::Wale) continue;
-          const double length = chain_length(c);
-          if (boundary_only(c) && length < shortest) {
-            shortest = length;
-            pick = &c;
-          }
-        }
-        if (pick != nullptr) {
-          pick->side = Side::Wale;
-          changed = true;
-        }
-        merge_same();
-      }
-    }
-    // Neighbouring boundary runs of one chain are one stretch of boundary.
-    for (Chain& c : out) join_boundary_runs(c);
-    // Short boundary runs at the ends of a course chain beside a wale side
-    // join the wale side: a wale edge, not a sliver course edge.
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      if (out[i].side != Side::Wale) continue;
-      Chain& before = out[(i + out.size() - 1) % out.size()];
-      Chain& after = out[(i + 1) % out.size()];
-      if (before.side != Side::Wale && before.runs.size() > 1 && !before.runs.back().level &&
-          before.runs.back().length < 0.5 * params.course_mm) {
-        out[i].runs.insert(out[i].runs.begin(), std::move(before.runs.back()));
-        before.runs.pop_back();
-      }
-      if (after.side != Side::Wale && after.runs.size() > 1 && !after.runs.front().level &&
-          after.runs.front().length < 0.5 * params.course_mm) {
-        out[i].runs.push_back(std::move(after.runs.front()));
-        after.runs.erase(after.runs.begin());
-      }
-    }
-    end_rows_in_wale_sides(out);
-    return out;
-  }
-
-  // Splits run `r` after its first `count` half-edges.
-  static std::pair<Run, Run> split_run(const Run& r, std::size_t count, const Pieces& pieces) {
-    Run a;
-    Run b;
-    a.side = b.side = r.side;
-    a.level = b.level = r.level;
-    for (std::size_t k = 0; k < r.halfedges.size(); ++k) {
-      const int h = r.halfedges[k];
-      Run& into = k < count ? a : b;
-      into.halfedges.push_back(h);
-      into.length += pieces.length(h);
-    }
-    return {a, b};
-  }
-
-  // §6.3, row ends. A row that ends where its bottom and top chains meet on
-  // the boundary (a wedge: the boundary crosses the rows obliquely) ends
-  // instead in a wale side: the stretch of the oblique boundary next to the
-  // point, `tip_side_wales` (0.9) wales long in a straight line. The faces
-  // before it lean towards the boundary and keep their height, where a wedge
-  // would shrink them to nothing and fan increases or decreases into its
-  // point (docs/stitch-mesh.md, step 4, "Row ends"). A wale side on the
-  // boundary shorter than that (the boundary turns from along the wale to
-  // oblique within the row) is lengthened the same way. The stretch ends at
-  // a piece vertex; where none lies at that distance, `tip_splits` receives
-  // the point to add (the caller adds them and makes the chains again).
-  void end_rows_in_wale_sides(std::vector<Chain>& out) {
-    if (!(params.tip_side_wales > 0) || out.size() < 2) return;
-    const double length = params.tip_side_wales * params.wale_mm;
-    const double tolerance = 0.02 * params.wale_mm;
-    // Where boundary run r, walked forward from its front or backward from
-    // its back, is `length` from `origin` in a straight line: the number of
-    // half-edges before that vertex, or nullopt (a split point to add is
-    // recorded when the distance is reached inside a half-edge).
-    auto cut_at = [&](const Vec3& origin, const Run& r,
-                      bool from_front) -> std::optional<std::size_t> {
-      if (r.level || r.length < length - tolerance) return std::nullopt;
-      const std::size_t n = r.halfedges.size();
-      for (std::size_t k = 0; k < n; ++k) {
-        const int h = from_front ? r.halfedges[k] : r.halfedges[n - 1 - k];
-        const Vec3 near = pieces.position[at(from_front ? pieces.from[at(h)] : pieces.to(h))];
-        const Vec3 far = pieces.position[at(from_front ? pieces.to(h) : pieces.from[at(h)])];
-        const double d_far = (far - origin).norm();
-        if (d_far < length - tolerance) continue;
-        if (std::abs(d_far - length) <= tolerance) {
-          if (k + 1 == n) return std::nullopt;  // the whole run: nothing left of it
-          return from_front ? k + 1 : n - 1 - k;
-        }
-        if (std::abs((near - origin).norm() - length) <= tolerance && k > 0) {
-          return from_front ? k : n - k;
-        }
-        // The point of this half-edge at that distance.
-        const Vec3 e = far - near;
-        if (const std::optional<double> exit = sphere_exit(near, e, origin, length)) {
-          const double s = std::clamp(*exit, 0.0, 1.0);
-          // Parameter from the half-edge's own start.
-          tip_splits.push_back({h, from_front ? s : 1.0 - s, near + s * e});
-        }
-        return std::nullopt;
-      }
-      return std::nullopt;
-    };
-    // Takes the stretch from the back of `a` (origin_a: the point its
-    // distance is measured from) or the front of `b`, the longer first.
-    // Returns the stretch as a wale run, or nullopt.
-    auto take = [&](Chain& a, Chain& b, const Vec3& origin_a, const Vec3& origin_b,
-                    bool& from_b) -> std::optional<Run> {
-      const bool prefer_b = b.runs.front().length >= a.runs.back().length;
-      for (int attempt = 0; attempt < 2; ++attempt) {
-        const bool use_b = (attempt == 0) == prefer_b;
-        if (use_b) {
-          if (auto cut = cut_at(origin_b, b.runs.front(), true)) {
-            auto [near, far] = split_run(b.runs.front(), *cut, pieces);
-            b.runs.front() = std::move(far);
-            near.side = Side::Wale;
-            from_b = true;
-            return near;
-          }
-        } else if (auto cut = cut_at(origin_a, a.runs.back(), false)) {
-          auto [far, near] = split_run(a.runs.back(), *cut, pieces);
-          a.runs.back() = std::move(far);
-          near.side = Side::Wale;
-          from_b = false;
-          return near;
-        }
-      }
-      return std::nullopt;
-    };
-    auto point = [&](int vertex) { return pieces.position[at(vertex)]; };
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      Chain& c = out[i];
-      if (c.side != Side::Wale) {
-        // A point where this chain meets the next course chain.
-        Chain& b = out[(i + 1) % out.size()];
-        if (&c == &b || b.side == Side::Wale || b.side == c.side) continue;
-        const Vec3 tip = point(pieces.from[at(b.runs.front().halfedges.front())]);
-        bool from_b = false;
-        std::optional<Run> stretch = take(c, b, tip, tip, from_b);
-        if (!stretch) continue;
-        Chain wale_side;
-        wale_side.side = Side::Wale;
-        wale_side.runs.push_back(std::move(*stretch));
-        ++stats.tip_sides;
-        out.insert(out.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::move(wale_side));
-        ++i;
-        continue;
-      }
-      // A short wale side on the boundary between two course chains.
-      Chain& a = out[(i + out.size() - 1) % out.size()];
-      Chain& b = out[(i + 1) % out.size()];
-      if (&a == &b || a.side == Side::Wale || b.side == Side::Wale) continue;
-      if (!boundary_only(c)) continue;
-      const Vec3 start = point(pieces.from[at(c.runs.front().halfedges.front())]);
-      const Vec3 end = point(pieces.to(c.runs.back().halfedges.back()));
-      if ((end - start).norm() >= length - tolerance) continue;
-      bool from_b = false;
-      std::optional<Run> stretch = take(a, b, end, start, from_b);
-      if (!stretch) continue;
-      if (from_b) {
-        c.runs.push_back(std::move(*stretch));
-      } else {
-        c.runs.insert(c.runs.begin(), std::move(*stretch));
-      }
-      ++stats.tip_sides;
-    }
-  }
-
   std::int32_t wale_arc(const Chain& chain) const {
     std::vector<int> all;
     double total = 0;
     for (const Run& r : chain.runs) {
       for (int h : r.halfedges) {
         all.push_back(h);
-        total += pieces.length(h);
+        total += slices.length(h);
       }
     }
     double walked = 0;
     for (int h : all) {
-      walked += pieces.length(h);
+      walked += slices.length(h);
       if (walked >= 0.5 * total) return arc_of(h);
     }
     return all.empty() ? kNoArc : arc_of(all.back());
@@ -1527,10 +531,8 @@ struct Builder {
     return steps;
   }
 
-  int first_vertex(const Chain& c) const {
-    return pieces.from[at(c.runs.front().halfedges.front())];
-  }
-  int last_vertex(const Chain& c) const { return pieces.to(c.runs.back().halfedges.back()); }
+  int first_vertex(const Chain& c) const { return slices.from(c.runs.front().halfedges.front()); }
+  int last_vertex(const Chain& c) const { return slices.to(c.runs.back().halfedges.back()); }
 
   // A strip around saddles of the row time (m >= 2 bottom and m top chains,
   // alternating; X-shaped for one saddle): one wale edge between two corners
@@ -1599,7 +601,7 @@ struct Builder {
       if (!usable(k) || !usable((k + 2) % n)) continue;
       found = true;
       const double cost =
-          (pieces.position[at(corner(k))] - pieces.position[at(corner((k + 2) % n))]).norm() +
+          (slices.position(corner(k)) - slices.position(corner((k + 2) % n))).norm() +
           kSplitBalance * params.wale_mm * imbalance(k);
       if (cost < least) {
         least = cost;
@@ -2007,8 +1009,8 @@ struct Builder {
       throw std::logic_error("stitch meshing: chain ends disagree with the strip's sides");
     }
     if (left_shared && right_shared && a == 1 && b == 2 && high_on_level[0] != high_on_level[1]) {
-      // One fixed bottom side, a top of a level piece and a boundary piece:
-      // the boundary piece is the wale side of a short-row triangle.
+      // One fixed bottom side, a top of a level-curve segment and a boundary
+      // segment: the boundary segment is the wale side of a short-row triangle.
       const EdgeRole first = high_on_level[0] ? EdgeRole::CourseOut : EdgeRole::Wale;
       const EdgeRole second = high_on_level[1] ? EdgeRole::CourseOut : EdgeRole::Wale;
       add_face({l[0], l[1], t[1]}, {EdgeRole::CourseIn, first, second},
@@ -2109,18 +1111,6 @@ struct Builder {
   }
 };
 
-// The disc as triangles (fans of its faces), for exact distances and
-// nearest points.
-cloth::TriangleMeshQuery disc_surface(const LabelledDisc& disc) {
-  std::vector<std::array<int, 3>> triangles;
-  for (const std::vector<int>& face : disc.faces) {
-    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-      triangles.push_back({face[0], face[i], face[i + 1]});
-    }
-  }
-  return cloth::TriangleMeshQuery(disc.positions, std::move(triangles));
-}
-
 Vec3 polygon_normal(const StitchMesh& mesh, const StitchFace& face) {
   Vec3 normal = Vec3::Zero();
   const std::size_t n = face.vertices.size();
@@ -2216,7 +1206,7 @@ int relax_positions(StitchMesh& mesh, const LabelledDisc& disc, int sweeps) {
   return sweep;
 }
 
-}  // namespace
+}  // namespace stitch_meshing
 
 std::vector<std::string> check_disc(const LabelledDisc& disc) {
   std::vector<std::string> problems;
@@ -2257,7 +1247,8 @@ std::vector<std::string> check_disc(const LabelledDisc& disc) {
       }
     }
     if (!ok) continue;
-    if (face_normal(disc, face).norm() <= 1e-12) problems.push_back(where + ": zero area");
+    if (stitch_meshing::face_normal(disc, face).norm() <= 1e-12)
+      problems.push_back(where + ": zero area");
     bool has_course = false;
     bool has_wale = false;
     for (int d : disc.directions[f]) (d % 2 == 0 ? has_course : has_wale) = true;
@@ -2267,6 +1258,7 @@ std::vector<std::string> check_disc(const LabelledDisc& disc) {
 }
 
 StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshParams& params) {
+  using namespace stitch_meshing;
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::string> input_problems = check_disc(disc);
   if (!input_problems.empty()) {
@@ -2280,60 +1272,21 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   Eigen::VectorXd t = row_time(disc, tris, params, result.stats);
   result.stats.solve_seconds = seconds_since(start);
   int bands = 1;
-  Pieces pieces;
-  std::map<int, std::vector<std::vector<int>>> loops;  // strip root -> boundary loops
-  std::vector<int> parent;
-  // Rows, pieces and strips from t. A strip with a hole (an interior
+  BandSlices slices;
+  Strips strips;
+  // Rows, slices and strips from t. A strip with a hole (an interior
   // extremum of t) makes the row time be levelled and the rows be placed
   // again; a row time without one is used as fitted.
-  auto find_strips = [&] {
-    // Strips: pieces of one band joined across their shared sides.
-    const int num_pieces = static_cast<int>(pieces.band.size());
-    parent.assign(at(num_pieces), 0);
-    std::iota(parent.begin(), parent.end(), 0);
-    for (std::size_t h = 0; h < pieces.from.size(); ++h) {
-      const int tw = pieces.twin[h];
-      if (tw < 0 || pieces.level[h] >= 0) continue;
-      const int a = find(parent, pieces.piece[h]);
-      const int b = find(parent, pieces.piece[at(tw)]);
-      if (a != b) parent[at(std::max(a, b))] = std::min(a, b);
-    }
-    auto on_boundary = [&](int h) { return pieces.twin[at(h)] < 0 || pieces.level[at(h)] >= 0; };
-    loops.clear();
-    std::vector<bool> visited(pieces.from.size(), false);
-    for (int h0 = 0; h0 < static_cast<int>(pieces.from.size()); ++h0) {
-      if (visited[at(h0)] || !on_boundary(h0)) continue;
-      std::vector<int> loop;
-      int h = h0;
-      do {
-        visited[at(h)] = true;
-        loop.push_back(h);
-        int c = pieces.next(h);
-        int guard = 0;
-        while (!on_boundary(c)) {
-          c = pieces.next(pieces.twin[at(c)]);
-          if (++guard > 100000) throw std::logic_error("stitch meshing: vertex walk does not end");
-        }
-        h = c;
-      } while (h != h0 && !visited[at(h)]);
-      if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
-      loops[find(parent, pieces.piece[at(h0)])].push_back(std::move(loop));
-    }
-  };
   auto make_strips = [&](const std::vector<bool>& candidates) {
     Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
     const std::vector<int> pin =
         pin_saddles(disc, tris, rows, bands, 0.4 * params.saddle_wales * params.wale_mm,
                     params.saddle_wales * params.wale_mm, candidates, result.stats.saddles_pinned);
-    pieces = slice(disc, tris, rows, 1.0, bands, pin);
-    find_strips();
+    slices = slice(disc, tris, rows, 1.0, bands, pin);
+    strips = find_strips(slices);
   };
   make_strips({});
-  auto has_hole = [&] {
-    return std::any_of(loops.begin(), loops.end(),
-                       [](const auto& entry) { return entry.second.size() > 1; });
-  };
-  if (has_hole()) {
+  if (strips.has_hole()) {
     result.stats.row_time_levelled = level_interior_extrema(disc, tris, t);
     make_strips({});
   }
@@ -2342,15 +1295,14 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   // than kLopsidedRatio, are held on a level and the rows are made again.
   if (params.saddle_wales > 0) {
     std::set<int> roots;
-    Builder probe{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
-    for (const auto& [root, strip_loops] : loops) {
+    ChainMaker probe(slices, tris, params);
+    for (const auto& [root, strip_loops] : strips.loops) {
       if (strip_loops.size() != 1) continue;
       int lows = 0;
       int highs = 0;
       double bottom = 0;
       double top = 0;
-      for (const Chain& c :
-           probe.chains(probe.loop_runs(strip_loops.front(), pieces.band[at(root)], t, tris))) {
+      for (const Chain& c : probe.chains(strip_loops.front(), slices.band[at(root)])) {
         lows += c.side == Side::Low ? 1 : 0;
         highs += c.side == Side::High ? 1 : 0;
         if (c.side != Side::Wale) (c.side == Side::Low ? bottom : top) += chain_length(c);
@@ -2363,57 +1315,57 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     }
     if (!roots.empty()) {
       std::vector<bool> candidates(disc.positions.size(), false);
-      for (std::size_t p = 0; p < pieces.band.size(); ++p) {
-        if (roots.count(find(parent, static_cast<int>(p))) == 0) continue;
-        for (int v : tris[at(pieces.tri[p])].v) candidates[at(v)] = true;
+      for (std::size_t p = 0; p < at(slices.num_slices()); ++p) {
+        if (roots.count(strips.root[p]) == 0) continue;
+        for (int v : tris[at(slices.tri[p])].v) candidates[at(v)] = true;
       }
       make_strips(candidates);
       // Held saddles make no extremum, so no strip with a hole; should one
       // appear all the same, the rows are made as before.
-      if (has_hole()) make_strips({});
+      if (strips.has_hole()) make_strips({});
     }
   }
   // Row ends: the boundary points 0.9 wale (`tip_side_wales`) from where a row's chains meet
-  // become piece vertices, so those rows can end in a wale side there.
+  // become slice vertices, so those rows can end in a wale side there.
   if (params.tip_side_wales > 0) {
     std::vector<HalfedgeSplit> splits;
     {
-      Builder probe{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
-      for (const auto& [root, strip_loops] : loops) {
-        if (strip_loops.size() == 1) {
-          probe.chains(probe.loop_runs(strip_loops.front(), pieces.band[at(root)], t, tris));
-        }
+      ChainMaker probe(slices, tris, params);
+      for (const auto& [root, strip_loops] : strips.loops) {
+        if (strip_loops.size() == 1) probe.chains(strip_loops.front(), slices.band[at(root)]);
       }
-      splits = std::move(probe.tip_splits);
+      splits = probe.tip_splits();
     }
     if (!splits.empty()) {
-      pieces = split_halfedges(pieces, std::move(splits));
-      find_strips();
+      slices = split_halfedges(slices, std::move(splits));
+      strips = find_strips(slices);
     }
   }
-  Builder builder{disc, params, pieces, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  Builder builder{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  ChainMaker chain_maker(slices, tris, params);
   builder.mesh.course_mm = params.course_mm;
   builder.mesh.wale_mm = params.wale_mm;
   // Strips in row order, so level curves are sampled from below first.
   std::vector<std::pair<int, int>> order;
-  for (const auto& [root, strip_loops] : loops) order.push_back({pieces.band[at(root)], root});
+  for (const auto& [root, strip_loops] : strips.loops)
+    order.push_back({slices.band[at(root)], root});
   std::sort(order.begin(), order.end());
   // Each strip's chains, made once (empty for a strip with a hole).
   std::vector<std::vector<Chain>> strip_chains(order.size());
   for (std::size_t i = 0; i < order.size(); ++i) {
     const auto& [band, root] = order[i];
-    const std::vector<std::vector<int>>& strip_loops = loops[root];
+    const std::vector<std::vector<int>>& strip_loops = strips.loops[root];
     if (strip_loops.size() == 1) {
-      strip_chains[i] = builder.chains(builder.loop_runs(strip_loops.front(), band, t, tris));
+      strip_chains[i] = chain_maker.chains(strip_loops.front(), band);
     }
   }
   for (auto it = strip_chains.rbegin(); it != strip_chains.rend(); ++it) builder.plan_minimums(*it);
   for (std::size_t i = 0; i < order.size(); ++i) {
     const auto& [band, root] = order[i];
-    const std::vector<std::vector<int>>& strip_loops = loops[root];
+    const std::vector<std::vector<int>>& strip_loops = strips.loops[root];
     ++builder.stats.strips;
     const std::string where =
-        "row " + std::to_string(band) + " strip at piece " + std::to_string(root);
+        "row " + std::to_string(band) + " strip at slice " + std::to_string(root);
     if (strip_loops.size() != 1) {
       builder.problems.push_back(where + ": " + std::to_string(strip_loops.size()) +
                                  " boundary loops (a strip with a hole: the row time has an "
@@ -2429,7 +1381,7 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   result.stats.invalid_faces = builder.stats.invalid_faces;
   result.stats.boundary_sides = builder.stats.boundary_sides;
   result.stats.sides_split_below = builder.stats.sides_split_below;
-  result.stats.tip_sides = builder.stats.tip_sides;
+  result.stats.tip_sides = chain_maker.tip_sides();
   result.mesh = std::move(builder.mesh);
   const auto relax_start = std::chrono::steady_clock::now();
   result.stats.relax_sweeps = relax_positions(result.mesh, disc, params.relax_sweeps);
@@ -2438,191 +1390,6 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   for (std::string& line : check(result.mesh)) result.problems.push_back(std::move(line));
   result.stats.total_seconds = seconds_since(start);
   return result;
-}
-
-namespace {
-
-EdgeLengthStats length_stats(const std::vector<double>& lengths, double target) {
-  EdgeLengthStats s;
-  s.count = static_cast<int>(lengths.size());
-  if (lengths.empty()) return s;
-  s.min_mm = *std::min_element(lengths.begin(), lengths.end());
-  s.max_mm = *std::max_element(lengths.begin(), lengths.end());
-  s.mean_mm =
-      std::accumulate(lengths.begin(), lengths.end(), 0.0) / static_cast<double>(lengths.size());
-  int within = 0;
-  for (double x : lengths) within += std::abs(x - target) <= kLengthTolerance * target;
-  s.within_15_percent = static_cast<double>(within) / static_cast<double>(lengths.size());
-  return s;
-}
-
-}  // namespace
-
-StitchMeshFigures measure(const StitchMesh& mesh) {
-  StitchMeshFigures out;
-  out.faces = static_cast<int>(mesh.faces.size());
-  out.vertices = static_cast<int>(mesh.positions.size());
-  std::map<std::pair<std::uint32_t, std::uint32_t>, EdgeRole> edges;  // undirected -> role
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
-  for (const StitchFace& face : mesh.faces) {
-    switch (face.type) {
-      case FaceType::Knit:
-        ++out.knit;
-        break;
-      case FaceType::Increase:
-        ++out.increase;
-        break;
-      case FaceType::Decrease:
-        ++out.decrease;
-        break;
-      case FaceType::ShortRow:
-        ++out.short_row;
-        break;
-    }
-    const std::size_t n = face.vertices.size();
-    Vec3 normal = Vec3::Zero();
-    for (std::size_t i = 0; i < n && i < face.roles.size(); ++i) {
-      const std::uint32_t a = face.vertices[i];
-      const std::uint32_t b = face.vertices[(i + 1) % n];
-      if (a >= mesh.positions.size() || b >= mesh.positions.size()) continue;
-      normal += mesh.positions[a].cross(mesh.positions[b]);
-      edges[{std::min(a, b), std::max(a, b)}] = face.roles[i];
-      ++directed[{a, b}];
-    }
-    out.area_mm2 += 0.5 * normal.norm();
-  }
-  std::vector<double> course;
-  std::vector<double> wale;
-  for (const auto& [e, role] : edges) {
-    const double len = (mesh.positions[e.second] - mesh.positions[e.first]).norm();
-    (role == EdgeRole::Wale ? wale : course).push_back(len);
-  }
-  out.course = length_stats(course, mesh.course_mm);
-  out.wale = length_stats(wale, mesh.wale_mm);
-  // Boundary: directed sides with no reverse; loops by following them.
-  std::map<std::uint32_t, std::uint32_t> next;
-  for (const auto& [e, count] : directed) {
-    if (directed.find({e.second, e.first}) == directed.end()) {
-      next[e.first] = e.second;
-      out.boundary_length_mm += (mesh.positions[e.second] - mesh.positions[e.first]).norm();
-    }
-  }
-  std::map<std::uint32_t, bool> seen;
-  for (const auto& [a, b] : next) {
-    if (seen[a]) continue;
-    ++out.boundary_loops;
-    std::uint32_t v = a;
-    while (!seen[v]) {
-      seen[v] = true;
-      auto it = next.find(v);
-      if (it == next.end()) break;
-      v = it->second;
-    }
-  }
-  std::vector<bool> used(mesh.positions.size(), false);
-  for (const StitchFace& face : mesh.faces) {
-    for (std::uint32_t v : face.vertices) {
-      if (v < used.size()) used[v] = true;
-    }
-  }
-  const int used_vertices = static_cast<int>(std::count(used.begin(), used.end(), true));
-  out.euler_characteristic = used_vertices - static_cast<int>(edges.size()) + out.faces;
-  return out;
-}
-
-StabilityCounts count_stability_rules(const StitchMesh& mesh) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::size_t, std::size_t>> sides;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const StitchFace& face = mesh.faces[f];
-    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
-      sides[{face.vertices[i], face.vertices[(i + 1) % face.vertices.size()]}] = {f, i};
-    }
-  }
-  auto pentagon = [](FaceType t) { return t == FaceType::Increase || t == FaceType::Decrease; };
-  StabilityCounts counts;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const StitchFace& face = mesh.faces[f];
-    const std::size_t n = face.vertices.size();
-    bool edge = false;
-    bool stacked = false;
-    for (std::size_t i = 0; i < n; ++i) {
-      auto twin = sides.find({face.vertices[(i + 1) % n], face.vertices[i]});
-      const StitchFace* other = twin == sides.end() ? nullptr : &mesh.faces[twin->second.first];
-      if (pentagon(face.type)) {
-        if (face.roles[i] == EdgeRole::Wale && other == nullptr) edge = true;
-        if (face.roles[i] == EdgeRole::CourseIn && other != nullptr && pentagon(other->type)) {
-          stacked = true;
-        }
-        if (face.roles[i] == EdgeRole::Wale && other != nullptr && pentagon(other->type) &&
-            other->type != face.type && f < twin->second.first) {
-          ++counts.opposed_shaping;
-        }
-      }
-      if (face.type == FaceType::ShortRow && face.roles[i] == EdgeRole::Wale && other != nullptr &&
-          other->type == FaceType::ShortRow && f < twin->second.first) {
-        ++counts.one_stitch_rows;
-      }
-    }
-    counts.edge_shaping += edge;
-    counts.stacked_shaping += stacked;
-  }
-  return counts;
-}
-
-OffSurface off_surface_faces(const StitchMesh& mesh, const LabelledDisc& disc,
-                             double tolerance_mm) {
-  OffSurface out;
-  out.tolerance_mm = tolerance_mm;
-  const cloth::TriangleMeshQuery surface = disc_surface(disc);
-  std::unordered_map<std::uint64_t, double> offset_of;  // side -> midpoint distance
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const std::vector<std::uint32_t>& v = mesh.faces[f].vertices;
-    double worst = 0;
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      const Vec3& p = mesh.positions[v[i]];
-      const Vec3& q = mesh.positions[v[(i + 1) % v.size()]];
-      // Both ends lie on the surface, so the midpoint is within half the side of it.
-      if ((q - p).norm() <= 2 * tolerance_mm) continue;
-      const std::uint64_t side = key(static_cast<int>(std::min(v[i], v[(i + 1) % v.size()])),
-                                     static_cast<int>(std::max(v[i], v[(i + 1) % v.size()])));
-      auto [it, fresh] = offset_of.emplace(side, 0.0);
-      if (fresh) it->second = surface.distance(0.5 * (p + q));
-      worst = std::max(worst, it->second);
-    }
-    if (worst > tolerance_mm) {
-      out.faces.push_back(f);
-      if (worst > out.max_offset_mm) {
-        out.max_offset_mm = worst;
-        out.farthest_face = f;
-      }
-    }
-  }
-  return out;
-}
-
-double disc_area_mm2(const LabelledDisc& disc) {
-  double area = 0;
-  for (const std::vector<int>& face : disc.faces) area += 0.5 * face_normal(disc, face).norm();
-  return area;
-}
-
-double disc_boundary_length_mm(const LabelledDisc& disc) {
-  std::unordered_map<std::uint64_t, int> directed;
-  for (const std::vector<int>& face : disc.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i)
-      ++directed[key(face[i], face[(i + 1) % face.size()])];
-  }
-  double length = 0;
-  for (const std::vector<int>& face : disc.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      const int a = face[i];
-      const int b = face[(i + 1) % face.size()];
-      if (directed.find(key(b, a)) == directed.end()) {
-        length += (disc.positions[at(b)] - disc.positions[at(a)]).norm();
-      }
-    }
-  }
-  return length;
 }
 
 }  // namespace planner

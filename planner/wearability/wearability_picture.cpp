@@ -2,12 +2,12 @@
 
 #include <cairo.h>
 
-#include <Eigen/Geometry>
 #include <algorithm>
-#include <array>
-#include <cmath>
+#include <cstddef>
 #include <ostream>
 #include <utility>
+
+#include "planner/render/four_views.hpp"
 
 namespace planner {
 
@@ -18,84 +18,42 @@ namespace planner {
 void draw_wearability(std::ostream& out, const CoverMesh& mesh,
                       const std::vector<double>& lace_share) {
   constexpr int kSize = 900;
-  const double yaw = 0.6, pitch = 0.45;
-  const Eigen::Matrix3d view = (Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
-                                Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()))
-                                   .toRotationMatrix();
-  std::vector<Eigen::Vector3d> p;
-  Eigen::AlignedBox3d box;
-  for (const auto& v : mesh.positions) {
-    p.push_back(view * v);
-    box.extend(p.back());
-  }
-  const double extent = std::max(box.sizes().x(), box.sizes().y());
-  const double scale = (kSize - 80) / std::max(extent, 1e-300);
-  auto screen_x = [&](const Eigen::Vector3d& q) { return 40 + (q.x() - box.min().x()) * scale; };
-  auto screen_y = [&](const Eigen::Vector3d& q) {
-    return kSize - 60 - (q.y() - box.min().y()) * scale;
-  };
-
-  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, kSize, kSize);
-  cairo_t* cr = cairo_create(surface);
-  cairo_set_source_rgb(cr, 1, 1, 1);
-  cairo_paint(cr);
-  std::vector<std::pair<double, std::size_t>> order;
-  std::vector<double> facing(mesh.faces.size(), 0);
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const auto& face = mesh.faces[f];
-    double depth = 0;
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      depth += p[face[i]].z();
-      normal += p[face[i]].cross(p[face[(i + 1) % face.size()]]);
-    }
-    facing[f] = normal.norm() > 0 ? normal.normalized().z() : 0;
-    order.push_back({depth / face.size(), f});
-  }
-  std::sort(order.begin(), order.end());  // far (negative z) first
-  cairo_set_line_width(cr, 0.5);
-  for (const auto& [depth, f] : order) {
-    const auto& face = mesh.faces[f];
-    cairo_move_to(cr, screen_x(p[face[0]]), screen_y(p[face[0]]));
-    for (std::size_t i = 1; i < face.size(); ++i)
-      cairo_line_to(cr, screen_x(p[face[i]]), screen_y(p[face[i]]));
-    cairo_close_path(cr);
-    const double shade = 0.55 + 0.4 * std::abs(facing[f]);
-    cairo_set_source_rgb(cr, shade, shade, shade * 1.02);
-    cairo_fill_preserve(cr);
-    cairo_set_source_rgb(cr, 0.45, 0.45, 0.45);
-    cairo_stroke(cr);
-  }
-  // Which side a vertex faces: average of its faces' facing.
-  std::vector<double> vertex_facing(mesh.positions.size(), 0);
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    for (int v : mesh.faces[f]) vertex_facing[v] += facing[f];
-  }
-  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  render::Scene scene;
+  scene.positions = mesh.positions;
+  scene.faces.reserve(mesh.faces.size());
+  for (const auto& face : mesh.faces) scene.faces.push_back({face, 0, {}, 0});
+  // Shaded by a head light; thin grey outlines.
+  scene.paints = {{{1, 1, 1.02}, {1, 1, 1.02}}};
+  scene.light = render::Vec3(0, 0, 1);
+  scene.ambient = 0.55;
+  scene.diffuse = 0.4;
+  scene.outline = true;
+  scene.outline_style = {{0.45, 0.45, 0.45}, 1, 0.5, 0.5, false, false};
   for (std::size_t a = 0; a < mesh.arcs.size(); ++a) {
     const double t = std::clamp(a < lace_share.size() ? lace_share[a] : 1.0, 0.0, 1.0);
-    for (const auto& [u, v] : mesh.arcs[a].edges) {
-      const bool front = vertex_facing[u] + vertex_facing[v] >= 0;
-      const double dash = 6;
-      cairo_set_dash(cr, front ? nullptr : &dash, front ? 0 : 1, 0);
-      cairo_set_line_width(cr, front ? 4 : 2);
-      cairo_set_source_rgb(cr, 0.15 + 0.7 * t, 0.6 * (1 - t) + 0.1, 0.2);
-      cairo_move_to(cr, screen_x(p[u]), screen_y(p[u]));
-      cairo_line_to(cr, screen_x(p[v]), screen_y(p[v]));
-      cairo_stroke(cr);
-    }
+    scene.line_styles.push_back(
+        {{0.15 + 0.7 * t, 0.6 * (1 - t) + 0.1, 0.2}, 1, 4, 2, true, false, 6});
+    for (const auto& [u, v] : mesh.arcs[a].edges)
+      scene.overlay.push_back({u, v, static_cast<int>(a)});
   }
-  cairo_set_dash(cr, nullptr, 0, 0);
+  render::Options options;
+  options.views = {render::View{0.6, 0.45}};
+  options.columns = 1;
+  options.panel_px = kSize;
+  options.fit = render::Fit::ViewBox;
+  render::FourViews picture(options);
+  picture.draw(scene);
+  cairo_t* cr = picture.cairo();
   // Legend, bottom left: sew, lace (with several runs the colour runs
   // between them with the share of runs that laced the arc), and what
   // dashes mean.
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 14);
   double x = 40;
-  const std::pair<const char*, std::array<double, 3>> entries[] = {{"sew", {0.15, 0.7, 0.2}},
-                                                                   {"lace", {0.85, 0.1, 0.2}}};
+  const std::pair<const char*, render::Rgb> entries[] = {{"sew", {0.15, 0.7, 0.2}},
+                                                         {"lace", {0.85, 0.1, 0.2}}};
   for (const auto& [label, colour] : entries) {
-    cairo_set_source_rgb(cr, colour[0], colour[1], colour[2]);
+    render::set_source(cr, colour);
     cairo_rectangle(cr, x, kSize - 36, 24, 16);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
@@ -105,16 +63,7 @@ void draw_wearability(std::ostream& out, const CoverMesh& mesh,
   }
   cairo_move_to(cr, x, kSize - 23);
   cairo_show_text(cr, "dashed: on the far side");
-  cairo_surface_flush(surface);
-  cairo_surface_write_to_png_stream(
-      surface,
-      [](void* closure, const unsigned char* data, unsigned int length) {
-        static_cast<std::ostream*>(closure)->write(reinterpret_cast<const char*>(data), length);
-        return CAIRO_STATUS_SUCCESS;
-      },
-      &out);
-  cairo_destroy(cr);
-  cairo_surface_destroy(surface);
+  picture.write_png(out);
 }
 
 }  // namespace planner

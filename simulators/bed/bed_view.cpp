@@ -11,6 +11,7 @@
 #include <ostream>
 
 #include "knitout/output_file.hpp"
+#include "knitout/writer.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 // Sanitizer builds only: fontconfig, which cairo's text drawing loads, keeps
@@ -49,12 +50,6 @@ cairo_status_t write_to_stream(void* closure, const unsigned char* data, unsigne
   auto* out = static_cast<std::ostream*>(closure);
   out->write(reinterpret_cast<const char*>(data), length);
   return *out ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
-}
-
-std::string number_text(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
 }
 
 }  // namespace
@@ -354,7 +349,7 @@ std::string BedView::write(const std::string& path, const Machine& machine,
     cairo_set_source_rgb(cr, 0, 0, 0);
     text(lx + 18, ly, "racking change", 11);
     ly += 16;
-    text(lx, ly, "racking at end: " + number_text(machine.racking()), 11);
+    text(lx, ly, "racking at end: " + knitout::format_number(machine.racking()), 11);
 
     cairo_destroy(cr);
     if (svg) {

@@ -7,12 +7,15 @@
 #include <limits>
 #include <stdexcept>
 
+#include "knitout/writer.hpp"
+
 namespace bed {
 
 using knitout::Bed;
 using knitout::CarrierId;
 using knitout::CarrierList;
 using knitout::Direction;
+using knitout::format_number;
 using knitout::Instruction;
 using knitout::Needle;
 using knitout::Op;
@@ -23,12 +26,6 @@ namespace {
 // the unlimited `generic` profile: a program that spreads further than this
 // is reported (V030) instead of allocating gigabytes.
 constexpr std::int64_t kMaxDenseNeedles = std::int64_t{1} << 19;
-
-std::string format_number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
-}
 
 std::string quote(std::string_view text) {
   return "'" + std::string(text) + "'";

@@ -101,7 +101,7 @@ struct ClothParams {
   // any earlier switch. Stopping early can only turn a success into a
   // failure, so the test stays conservative.
   int stall_switches = 3;
-  // Threads for one simulation (0 = all hardware threads).
+  // Threads for one simulation (0: OMP_NUM_THREADS, else all hardware threads).
   int threads = 1;
 };
 

@@ -32,7 +32,7 @@ struct SdfParams {
   int resolution = 96;
   // Margin around the mesh's bounding box, as a fraction of its diagonal.
   double margin_fraction = 0.2;
-  // Threads for building the grid (0 = all hardware threads).
+  // Threads for building the grid (0: OMP_NUM_THREADS, else all hardware threads).
   int threads = 0;
 };
 

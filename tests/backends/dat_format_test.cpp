@@ -145,6 +145,31 @@ TEST(DatFormatTest, ExtraBytesAfterTheLastRowAreAWarning) {
   EXPECT_EQ(sink.diagnostics()[0].code, "D045");
 }
 
+TEST(DatFormatTest, ScanRunsFindsEachRowWithItsZeroLengthPairs) {
+  // A 300-pixel row of one colour is (c, 255) (c, 45); a 255-pixel run
+  // followed by another colour adds a (c, 0) pair that stays with its row.
+  std::vector<std::uint8_t> bytes = file_prefix(300, 2);
+  bytes.insert(bytes.end(), {7, 255, 7, 45});
+  bytes.insert(bytes.end(), {7, 255, 7, 0, 8, 45, 8, 0});
+  knitout::DiagnosticSink sink;
+  const std::optional<RunRows> rows = scan_runs(bytes, "t.dat", sink);
+  ASSERT_TRUE(rows.has_value());
+  EXPECT_TRUE(sink.diagnostics().empty());
+  EXPECT_EQ(rows->width, 300);
+  EXPECT_EQ(rows->height, 2);
+  EXPECT_EQ(rows->row_offsets,
+            (std::vector<std::size_t>{kDataOffset, kDataOffset + 4, kDataOffset + 4 + 8}));
+}
+
+TEST(DatFormatTest, ScanRunsRejectsWhatDecodeRejects) {
+  std::vector<std::uint8_t> bytes = file_prefix(10, 2);
+  bytes.insert(bytes.end(), {0, 10, 0, 4});
+  knitout::DiagnosticSink sink;
+  EXPECT_FALSE(scan_runs(bytes, "t.dat", sink).has_value());
+  EXPECT_EQ(first_error(sink),
+            "t.dat: error: [D043] truncated DAT: the data ends in row 1 of 2 (6 pixels missing)");
+}
+
 TEST(DatFormatTest, HugeClaimedRasterIsRejectedBeforeAllocating) {
   auto bytes = file_prefix(65536, 65536);
   bytes.push_back(0);

@@ -86,14 +86,20 @@ TEST(JobTest, RefusesATruncatedDatWithTheReason) {
   dat.insert(dat.end(), {0, 10, 0, 4});
   auto job = make_job("t.dat", dat);
   ASSERT_FALSE(job.ok());
-  EXPECT_EQ(job.error().message, "DAT ends inside raster row 1 of 2 (offset 1540)");
+  EXPECT_EQ(job.error().message,
+            "[D043] truncated DAT: the data ends in row 1 of 2 (6 pixels missing)");
   dat.insert(dat.end(), {0, 7});
   auto over = make_job("t.dat", dat);
   ASSERT_FALSE(over.ok());
   EXPECT_EQ(over.error().message,
-            "DAT raster row 1 runs to 11 pixels, past the width 10 (offset 1540)");
+            "[D044] corrupt DAT: the run at byte 1540 (7 pixels of colour 0) crosses the end "
+            "of row 1");
   dat.back() = 6;
   EXPECT_TRUE(make_job("t.dat", dat).ok());
+  dat.insert(dat.end(), {5, 5});
+  auto extra = make_job("t.dat", dat);
+  ASSERT_FALSE(extra.ok());
+  EXPECT_EQ(extra.error().message, "DAT has 2 bytes after its 2 raster rows");
 }
 
 TEST(JobTest, RefusesUnknownFormatsAndPathNames) {

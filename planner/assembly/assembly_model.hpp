@@ -1,0 +1,98 @@
+// The assembly guide's picture of a plan folder (internal to
+// planner/assembly/): the stitch mesh, the pieces laid flat, the cut-arcs and
+// the numbered seams, with the lookups the drawing code needs. `load` fills
+// it (assembly_load.cpp); the seams are made by assembly_seams.cpp.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "knitout/diagnostic.hpp"
+#include "planner/schedule/piece_layout.hpp"
+#include "planner/schedule/schedule.hpp"
+#include "planner/stitch_mesh/stitch_mesh.hpp"
+
+namespace planner::assembly {
+
+// A failure with its message already formatted (`PATH: error: [A0xx] ...`).
+struct Failure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Throws the Failure `FILE: error: [CODE] message` (codes in docs/diagnostics.md).
+[[noreturn]] void fail(const std::filesystem::path& file, const char* code,
+                       const std::string& message);
+
+// The text of the first error in `sink`, or "unknown problem".
+std::string first_error(const knitout::DiagnosticSink& sink);
+
+// The key of the undirected side between vertices a and b.
+std::uint64_t side_key(std::uint32_t a, std::uint32_t b);
+
+// Side `side` (from corner side to corner side + 1) of stitch-mesh face `face`.
+struct SideRef {
+  int face = 0;
+  int side = 0;
+  bool operator<(const SideRef& o) const { return face != o.face ? face < o.face : side < o.side; }
+  bool operator==(const SideRef& o) const { return face == o.face && side == o.side; }
+};
+
+enum class SeamKind { ScheduleCut, WaleSeam, CutArc };
+
+struct Seam {
+  int number = 0;
+  bool lace = false;
+  bool labelled = true;  // false: the arc has no wearability label (treated as sew)
+  SeamKind kind = SeamKind::CutArc;
+  int arc = -1;  // cuts.json arc id (CutArc), or index in schedule_cuts (ScheduleCut)
+  int part = 1;
+  int parts = 1;
+  std::array<std::vector<SideRef>, 2> sides;  // the two stretches that are joined, in order
+  std::array<int, 2> piece{{0, 0}};           // the piece each side's number is drawn on
+  std::array<SideRef, 2> label_at;            // the side each side's number is drawn on
+};
+
+struct ArcInfo {
+  int id = 0;
+  bool lace = false;
+  bool labelled = false;
+  double length_mm = 0;
+  int seams = 0;  // numbered seams made from it
+};
+
+struct Model {
+  std::filesystem::path dir;
+  StitchMesh mesh;
+  Schedule schedule;
+  std::vector<PieceLayout> layouts;
+  std::vector<int> piece_of_face;
+  std::vector<int> layout_index;  // face -> index in its piece's layout
+  std::unordered_map<std::uint64_t, std::vector<SideRef>> sides_by_key;
+  std::vector<Seam> seams;  // in closing order, numbered 1..n
+  std::vector<ArcInfo> arcs;
+  std::map<SideRef, int> seam_of_side;
+  int sewn = 0;
+};
+
+// The side of another face that `s` is shared with, or {kNone, kNone} on the
+// boundary.
+SideRef other_side(const Model& m, SideRef s);
+// The vertices of side `s`, in the face's order.
+std::array<std::uint32_t, 2> side_vertices(const Model& m, SideRef s);
+Eigen::Vector3d side_mid(const Model& m, SideRef s);
+// The side of `face` shared with `other` (of the given role), or kNone.
+int shared_side(const Model& m, int face, int other, EdgeRole role);
+
+// Reads the plan folder `dir` (docs/assembly.md) into `m`, seams numbered in
+// closing order; throws Failure (A001-A004) when the folder cannot be read or
+// its files do not belong together.
+void load(Model& m, const std::filesystem::path& dir);
+
+}  // namespace planner::assembly

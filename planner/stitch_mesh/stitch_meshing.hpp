@@ -1,0 +1,275 @@
+// Internals of the stitch mesher (stitch_mesher.hpp has the method and the
+// public interface): what its steps share. Only planner/stitch_mesh/ includes
+// this header.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "planner/common/index.hpp"
+#include "planner/mesh/mesh.hpp"
+#include "planner/stitch_mesh/stitch_mesher.hpp"
+#include "simulators/cloth/sdf.hpp"
+
+namespace planner::stitch_meshing {
+
+// ---------------------------------------------------------------------------
+// Geometry helpers (geometry.cpp).
+
+// The directed vertex pair a -> b as one key.
+inline std::uint64_t key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+// Twice the vector area of a disc face (Newell), not normalised.
+Vec3 face_normal(const LabelledDisc& disc, const std::vector<int>& face);
+
+// The disc as triangles (fans of its faces), for exact distances and
+// nearest points.
+cloth::TriangleMeshQuery disc_surface(const LabelledDisc& disc);
+
+// The larger t at which a + t e is `radius` from `centre`, or nullopt when
+// the line misses that sphere (or e is zero).
+std::optional<double> sphere_exit(const Vec3& a, const Vec3& e, const Vec3& centre, double radius);
+
+// A side is the right length when it is within this fraction of its target
+// (StitchMeshFigures::within_15_percent; the shared-mesh test asks 90% of
+// course and of wale sides to be).
+constexpr double kLengthTolerance = 0.15;
+
+// The cost of a side whose length is off its target by the fraction `off`:
+// its square, and `outside` more if it is over kLengthTolerance.
+double length_cost(double off, double outside);
+
+// ---------------------------------------------------------------------------
+// Step 1: triangles with a wale direction each, and the row time t
+// (row_time.cpp).
+
+// A triangle of the disc (its faces split into triangles).
+struct Triangle {
+  std::array<int, 3> v{};
+  int face = -1;
+  Vec3 normal = Vec3::Zero();  // unit
+  double area = 0;
+  Vec3 wale = Vec3::Zero();  // unit, in the triangle's plane
+  Vec3 grad = Vec3::Zero();  // gradient of t
+};
+
+// The disc's faces as triangles, each with the wale direction its face's
+// labels give: the course sides turned a quarter turn about the normal, or
+// the +v sides where a face has no course side. Quads are split along the
+// shorter diagonal, other polygons as a fan.
+std::vector<Triangle> triangulate(const LabelledDisc& disc);
+
+// Least-squares fit of t to the target gradients (Poisson equation with
+// the cotangent Laplacian), then straightening fits towards unit speed
+// until t settles. t is in rows (|grad t| = 1 / wale_mm) and starts at 0.
+// Sets each triangle's `grad` and stats.straighten_fits and
+// label_deviation_deg. Throws std::runtime_error when the Laplacian cannot
+// be factorised.
+Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
+                         const StitchMeshParams& params, StitchMeshStats& stats);
+
+// ---------------------------------------------------------------------------
+// Step 2, rows (row_time.cpp, row_time_critical_points.cpp).
+
+// Row placement: t mapped monotonically so that rows are wale_mm tall on
+// average over each stretch of t. Where t is flat (labels that converge or
+// curl keep |grad t| below 1 / wale_mm), equal steps of t would give rows
+// that are too tall; there the mapped value rises faster. Per thin slab of t
+// the height is its area over the length of its level curve; the mapped
+// value at t is the height below t in rows (scaled so there is a whole
+// number of rows). Returns the mapped value per vertex; `bands` receives the
+// number of rows.
+Eigen::VectorXd row_levels(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                           const Eigen::VectorXd& t, const StitchMeshParams& params, int& bands);
+
+// The vertices joined to each vertex by a side of the triangles.
+std::vector<std::vector<int>> vertex_neighbours(const std::vector<Triangle>& tris, std::size_t n);
+
+// Per vertex of the disc: whether it lies on the disc boundary.
+std::vector<bool> on_disc_boundary(const LabelledDisc& disc);
+
+// A row time with an interior extremum has closed level curves round it:
+// the band there is a strip with a hole, which no zip can fill. The
+// least-squares fit can make one even on consistent labels (its curl-free
+// part need not follow the labels' turning everywhere). This levels t so
+// that from every vertex a path runs down to the disc boundary on which t
+// never rises, and another on which t never falls: pits are filled to their
+// spill level and peaks cut to theirs (morphological reconstruction by
+// priority flood from the boundary, alternated until neither changes t).
+// Then every component of {t < c} and of {t > c} reaches the boundary, so
+// no band has a hole. Returns how many vertices changed.
+int level_interior_extrema(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                           Eigen::VectorXd& t);
+
+// Saddles on a level (step 2, docs/stitch-mesh.md "Saddles on a level").
+// Near a saddle of t the level curves form an X. A saddle inside a band
+// makes a strip with two bottom and two top chains, which split_folds can
+// only cut between corners of its chains, far from the saddle, so the
+// band's height there ends up in long wale sides; a saddle on the disc
+// boundary (half of one, where a cut runs through it, or a fold of the cut
+// across the rows) makes a strip whose bottom and top differ in length,
+// zipped with a fan of shaping. Held exactly on a level, the saddle is where
+// the level curve meets itself or the boundary: the bands on either side are
+// strips that meet at the saddle, and no strip needs to go round it.
+// The rows are raised or lowered round each saddle among `candidates` by a
+// bump, flat up to `inner_mm` from it and falling smoothly to nothing at
+// `outer_mm` (along the mesh's edges), so that the saddle's value is a
+// whole level; saddles already held stay where they are. A bump is not made
+// where it would turn a vertex inside the disc into an extremum, stop a held
+// saddle being one, or bring a neighbour of a held saddle onto its level.
+// Returns the level per vertex (-1 for none).
+std::vector<int> pin_saddles(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                             Eigen::VectorXd& rows, int bands, double inner_mm, double outer_mm,
+                             const std::vector<bool>& candidates, int& pinned);
+
+// ---------------------------------------------------------------------------
+// Step 2, slices and strips (band_slices.cpp).
+
+// Each face of `mesh` is a slice: the part of one triangle inside one band
+// (between consecutive levels). Its vertices are the disc's vertices, then
+// the points where level curves cross the triangles' sides. Slices of one
+// band that share a side (not a level curve) make up a strip.
+struct BandSlices {
+  HalfedgeMesh mesh;
+  std::vector<int> band;         // per slice
+  std::vector<int> tri;          // per slice: the triangle it is part of
+  std::vector<int> level;        // per half-edge: level index of a level-curve side, else -1
+  std::vector<int> source_face;  // per half-edge on the disc boundary: disc face, else -1
+  std::vector<int> source_side;  // ... and its side
+  std::vector<bool> pinned;      // per disc vertex: a saddle of t held on a level
+
+  int num_slices() const { return mesh.num_faces(); }
+  int num_halfedges() const { return mesh.num_halfedges(); }
+  const Vec3& position(int v) const { return mesh.position(v); }
+  int from(int h) const { return mesh.from(h); }
+  int to(int h) const { return mesh.to(h); }
+  int next(int h) const { return mesh.next(h); }
+  int twin(int h) const { return mesh.twin(h); }
+  int slice(int h) const { return mesh.face(h); }
+  double length(int h) const { return mesh.edge_length(h); }
+  bool is_pinned(int v) const { return at(v) < pinned.size() && pinned[at(v)]; }
+};
+
+// The triangles cut at the whole levels of t / spacing (levels 1 .. bands-1).
+// `pin` holds, per disc vertex, the level a saddle of t is held on (-1 for
+// none; empty for no saddles held): such a vertex lies on its level, a
+// corner of the slices of both bands, and the level curves through it meet
+// there. Slices are numbered triangle by triangle, bottom band first; the
+// half-edges of each in counter-clockwise order.
+BandSlices slice(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                 const Eigen::VectorXd& t, double spacing, int bands, const std::vector<int>& pin);
+
+// A point to add on a half-edge of the disc boundary: at parameter s from its start.
+struct HalfedgeSplit {
+  int halfedge = -1;
+  double s = 0;
+  Vec3 point = Vec3::Zero();
+};
+
+// The slices with points added on boundary half-edges (each split half-edge
+// becomes two with the same origin; boundary half-edges have no twin).
+BandSlices split_halfedges(const BandSlices& in, std::vector<HalfedgeSplit> splits);
+
+// The strips of a slicing, each with its boundary loops: the half-edges on
+// a level curve or on the disc boundary, in walk order (the strip on the
+// left). A strip is named by its root, its lowest slice.
+struct Strips {
+  std::vector<int> root;                               // per slice
+  std::map<int, std::vector<std::vector<int>>> loops;  // root -> boundary loops
+  // Whether a strip has more than one boundary loop (a hole).
+  bool has_hole() const;
+};
+Strips find_strips(const BandSlices& slices);
+
+// ---------------------------------------------------------------------------
+// Step 3, chains (chains.cpp).
+
+// Which way a stretch of a strip's boundary runs: along its bottom (course-in
+// sides), along its top (course-out sides), or up a row's end (wale sides).
+enum class Side : std::uint8_t { Low, High, Wale };
+
+// Consecutive half-edges of a strip's boundary loop of one side and kind.
+struct Run {
+  Side side = Side::Wale;
+  bool level = false;          // a level curve (shared with the next strip), not the disc boundary
+  std::vector<int> halfedges;  // in loop order
+  double length = 0;
+};
+
+// Consecutive runs of one side.
+struct Chain {
+  Side side = Side::Wale;
+  std::vector<Run> runs;
+};
+
+double chain_length(const Chain& chain);
+
+// A chain of disc boundary only (no level curve).
+bool boundary_only(const Chain& chain);
+
+// Neighbouring boundary runs of a chain are one stretch of boundary: join
+// them into one run (level-curve runs stay apart).
+void join_boundary_runs(Chain& chain);
+
+// Makes the chains of strips' boundary loops (§6.2): level curves below are
+// bottom chains and above top chains; the disc boundary is classified by
+// the angle between its outward normal and grad t (facing down: bottom, a
+// cast-on; facing up: top, a bind-off; along the rows' ends: a wale side).
+// Steps of a jagged cut and folds of the boundary against the rows give way
+// to their neighbours, and rows that end in a point on an oblique boundary
+// end in a wale side instead (end_rows_in_wale_sides).
+class ChainMaker {
+ public:
+  ChainMaker(const BandSlices& slices, const std::vector<Triangle>& tris,
+             const StitchMeshParams& params)
+      : slices_(slices), tris_(tris), params_(params) {}
+
+  // The chains of one boundary loop of a strip in `band`, in loop order.
+  std::vector<Chain> chains(const std::vector<int>& loop, int band);
+
+  // Row ends made or lengthened by the calls so far.
+  int tip_sides() const { return tip_sides_; }
+  // Points to add on boundary half-edges so that the row ends found so far
+  // can end at a slice vertex (split_halfedges; the chains are then made
+  // again).
+  const std::vector<HalfedgeSplit>& tip_splits() const { return tip_splits_; }
+
+ private:
+  // The loop's half-edges grouped into runs of one side and kind.
+  std::vector<Run> loop_runs(const std::vector<int>& loop, int band) const;
+  // Wale chains between chains of one kind, jagged steps and folds against
+  // the rows give way until each kind is one chain where the loop allows.
+  void settle_kinds(std::vector<Chain>& out) const;
+  // Short boundary runs at the ends of a course chain beside a wale side
+  // join the wale side: a wale edge, not a sliver course edge.
+  void short_ends_to_wale_sides(std::vector<Chain>& out) const;
+  void end_rows_in_wale_sides(std::vector<Chain>& out);
+  // Where boundary run r, walked forward from its front or backward from its
+  // back, is row_end_length() from `origin` in a straight line: the number of
+  // half-edges before that vertex, or nullopt (a split point to add is
+  // recorded in tip_splits_ when the distance is reached inside a half-edge).
+  std::optional<std::size_t> cut_at(const Vec3& origin, const Run& r, bool from_front);
+  // Takes the stretch from the back of `a` (origin_a: the point its
+  // distance is measured from) or the front of `b`, the longer first.
+  // Returns the stretch as a wale run, or nullopt.
+  std::optional<Run> take_stretch(Chain& a, Chain& b, const Vec3& origin_a, const Vec3& origin_b,
+                                  bool& from_b);
+  double row_end_length() const { return params_.tip_side_wales * params_.wale_mm; }
+  double row_end_tolerance() const { return 0.02 * params_.wale_mm; }
+
+  const BandSlices& slices_;
+  const std::vector<Triangle>& tris_;
+  const StitchMeshParams& params_;
+  int tip_sides_ = 0;
+  std::vector<HalfedgeSplit> tip_splits_;
+};
+
+}  // namespace planner::stitch_meshing
