@@ -1,6 +1,6 @@
 // The remesher's fields (remesh.hpp): a multi-resolution hierarchy of the
 // samples' graph, the 4-RoSy orientation field and the 4-PoSy position
-// field solved on it coarse to fine (Instant Meshes §3-4).
+// field solved on it coarse to fine (Instant Meshes §3.1, §3.2, §4).
 #include <algorithm>
 #include <cmath>
 #include <limits>
