@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "planner/common/index.hpp"
 #include "planner/mesh/soup.hpp"
 
 namespace planner {
@@ -23,7 +24,7 @@ HalfedgeMesh::HalfedgeMesh(PolygonMesh mesh) : mesh_(std::move(mesh)) {
   for (std::size_t f = 0; f < nf; ++f) {
     face_start_[f + 1] = face_start_[f] + static_cast<int>(mesh_.faces[f].size());
   }
-  const std::size_t nh = static_cast<std::size_t>(face_start_[nf]);
+  const std::size_t nh = at(face_start_[nf]);
   face_.resize(nh);
   from_.resize(nh);
   twin_.assign(nh, -1);
@@ -34,8 +35,8 @@ HalfedgeMesh::HalfedgeMesh(PolygonMesh mesh) : mesh_(std::move(mesh)) {
     const auto& face = mesh_.faces[f];
     for (std::size_t i = 0; i < face.size(); ++i) {
       const int h = face_start_[f] + static_cast<int>(i);
-      face_[static_cast<std::size_t>(h)] = static_cast<int>(f);
-      from_[static_cast<std::size_t>(h)] = face[i];
+      face_[at(h)] = static_cast<int>(f);
+      from_[at(h)] = face[i];
       const int to_vertex = face[(i + 1) % face.size()];
       if (!directed.emplace(pair_key(face[i], to_vertex), h).second) {
         throw std::logic_error("HalfedgeMesh: half-edge " + std::to_string(face[i]) + "->" +
@@ -52,14 +53,14 @@ HalfedgeMesh::HalfedgeMesh(PolygonMesh mesh) : mesh_(std::move(mesh)) {
   for (std::size_t h = 0; h < nh; ++h) {
     if (edge_[h] >= 0) continue;
     edge_[h] = num_edges_;
-    if (twin_[h] >= 0) edge_[static_cast<std::size_t>(twin_[h])] = num_edges_;
+    if (twin_[h] >= 0) edge_[at(twin_[h])] = num_edges_;
     edge_halfedge_.push_back(static_cast<int>(h));
     ++num_edges_;
   }
   vertex_out_.assign(mesh_.positions.size(), -1);
   boundary_vertex_.assign(mesh_.positions.size(), false);
   for (std::size_t h = 0; h < nh; ++h) {
-    const auto v = static_cast<std::size_t>(from_[h]);
+    const auto v = at(from_[h]);
     // A boundary vertex keeps its outgoing half-edge with no face clockwise
     // of it (twin(h) < 0): the counter-clockwise fan walk starts there.
     if (twin_[h] < 0) {
@@ -71,7 +72,7 @@ HalfedgeMesh::HalfedgeMesh(PolygonMesh mesh) : mesh_(std::move(mesh)) {
   }
   // Vertices that are the end of a boundary half-edge are boundary too.
   for (std::size_t h = 0; h < nh; ++h) {
-    if (twin_[h] < 0) boundary_vertex_[static_cast<std::size_t>(to(static_cast<int>(h)))] = true;
+    if (twin_[h] < 0) boundary_vertex_[at(to(static_cast<int>(h)))] = true;
   }
 }
 
@@ -91,7 +92,7 @@ int HalfedgeMesh::prev(int h) const {
 
 std::vector<int> HalfedgeMesh::outgoing(int v) const {
   std::vector<int> result;
-  const int start = vertex_out_[static_cast<std::size_t>(v)];
+  const int start = vertex_out_[at(v)];
   if (start < 0) return result;
   // Counter-clockwise rotation: the next outgoing half-edge is twin(prev(h)).
   int h = start;
@@ -110,7 +111,7 @@ double HalfedgeMesh::corner_angle(int h) const {
 }
 
 Vec3 HalfedgeMesh::face_normal(int f) const {
-  return vector_area(mesh_, mesh_.faces[static_cast<std::size_t>(f)]);
+  return vector_area(mesh_, mesh_.faces[at(f)]);
 }
 
 Vec3 HalfedgeMesh::face_center(int f) const {
@@ -121,20 +122,20 @@ Vec3 HalfedgeMesh::face_center(int f) const {
 }
 
 int HalfedgeMesh::count_boundary_loops() const {
-  std::vector<bool> seen(static_cast<std::size_t>(num_halfedges()), false);
+  std::vector<bool> seen(at(num_halfedges()), false);
   int loops = 0;
   for (int h = 0; h < num_halfedges(); ++h) {
-    if (twin(h) >= 0 || seen[static_cast<std::size_t>(h)]) continue;
+    if (twin(h) >= 0 || seen[at(h)]) continue;
     ++loops;
     // Walk the loop: from the end of h, the next boundary half-edge is found
     // by rotating clockwise around to(h) until a half-edge without twin.
     int b = h;
     do {
-      seen[static_cast<std::size_t>(b)] = true;
+      seen[at(b)] = true;
       int n = next(b);
       while (twin(n) >= 0) n = next(twin(n));
       b = n;
-    } while (b != h && !seen[static_cast<std::size_t>(b)]);
+    } while (b != h && !seen[at(b)]);
   }
   return loops;
 }

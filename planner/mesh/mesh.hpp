@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "planner/common/index.hpp"
 #include "simulators/cloth/polygon_mesh.hpp"
 
 namespace planner {
@@ -38,30 +39,28 @@ class HalfedgeMesh {
   explicit HalfedgeMesh(PolygonMesh mesh);
 
   const PolygonMesh& polygons() const { return mesh_; }
-  const Vec3& position(int v) const { return mesh_.positions[static_cast<std::size_t>(v)]; }
+  const Vec3& position(int v) const { return mesh_.positions[at(v)]; }
 
   int num_vertices() const { return static_cast<int>(mesh_.positions.size()); }
   int num_faces() const { return static_cast<int>(mesh_.faces.size()); }
   int num_halfedges() const { return static_cast<int>(from_.size()); }
   int num_edges() const { return num_edges_; }
 
-  int face_start(int f) const { return face_start_[static_cast<std::size_t>(f)]; }
-  int degree(int f) const {
-    return face_start_[static_cast<std::size_t>(f) + 1] - face_start_[static_cast<std::size_t>(f)];
-  }
-  int face(int h) const { return face_[static_cast<std::size_t>(h)]; }
-  int from(int h) const { return from_[static_cast<std::size_t>(h)]; }
-  int to(int h) const { return from_[static_cast<std::size_t>(next(h))]; }
+  int face_start(int f) const { return face_start_[at(f)]; }
+  int degree(int f) const { return face_start_[at(f) + 1] - face_start_[at(f)]; }
+  int face(int h) const { return face_[at(h)]; }
+  int from(int h) const { return from_[at(h)]; }
+  int to(int h) const { return from_[at(next(h))]; }
   int next(int h) const;
   int prev(int h) const;
   // The opposite half-edge, -1 on the mesh boundary.
-  int twin(int h) const { return twin_[static_cast<std::size_t>(h)]; }
-  int edge(int h) const { return edge_[static_cast<std::size_t>(h)]; }
+  int twin(int h) const { return twin_[at(h)]; }
+  int edge(int h) const { return edge_[at(h)]; }
   // One half-edge of an edge (the other is its twin, if any).
-  int edge_halfedge(int e) const { return edge_halfedge_[static_cast<std::size_t>(e)]; }
+  int edge_halfedge(int e) const { return edge_halfedge_[at(e)]; }
   // Index of half-edge h inside its face (its corner number).
   int corner(int h) const { return h - face_start(face(h)); }
-  bool is_boundary_vertex(int v) const { return boundary_vertex_[static_cast<std::size_t>(v)]; }
+  bool is_boundary_vertex(int v) const { return boundary_vertex_[at(v)]; }
   bool is_boundary_edge(int e) const { return twin(edge_halfedge(e)) < 0; }
 
   // Outgoing half-edges of v in counter-clockwise order. For a boundary

@@ -54,8 +54,8 @@ class SoupImporter final : public BaseImporter {
   void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec3f>&) override {}
   void set_face_texindex(FaceHandle, int) override {}
   void set_point(VertexHandle vh, const OpenMesh::Vec3f& p) override {
-    if (vh.idx() >= 0 && static_cast<std::size_t>(vh.idx()) < mesh_.positions.size()) {
-      mesh_.positions[static_cast<std::size_t>(vh.idx())] = Vec3(p[0], p[1], p[2]);
+    if (vh.idx() >= 0 && at(vh.idx()) < mesh_.positions.size()) {
+      mesh_.positions[at(vh.idx())] = Vec3(p[0], p[1], p[2]);
     }
   }
   void set_halfedge(VertexHandle, HalfedgeHandle) override {}

@@ -1,11 +1,12 @@
 // The quad-dominant proxy Q of the garment surface (§4.1).
 //
 // A quad-dominant input (more than half of its faces are quads) is used as
-// it is. Any other input (a triangle mesh, as users have) is remeshed:
-// decimated to the target edge length, given a smooth 4-fold orientation
-// field (the extrinsic smoothing of Instant Meshes), and its triangles are
-// paired into quads whose sides follow that field. docs/cutting.md explains
-// why this differs from Instant Meshes' position-field extraction.
+// it is. Any other input (a triangle mesh, as users have) is remeshed with
+// field-aligned extraction (remesh.hpp) at the target edge length, tried
+// again at nearby spacings when the extraction is not clean; when none is,
+// the resampled surface's triangles are paired into quads whose sides
+// follow a smooth 4-fold orientation field. docs/cutting.md says where this
+// differs from Instant Meshes.
 // Either way faces with more than 4 corners are then split (§4.1): a
 // pentagon by the edge that splits its largest corner, larger polygons by
 // cutting quads off their largest corner.

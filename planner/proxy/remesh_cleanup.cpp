@@ -179,7 +179,7 @@ int fill_holes(PolygonMesh& mesh, int keep, std::size_t max_corners) {
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return lengths[a] > lengths[b]; });
   int closed = 0;
-  for (std::size_t k = static_cast<std::size_t>(std::max(keep, 0)); k < order.size(); ++k) {
+  for (std::size_t k = at(std::max(keep, 0)); k < order.size(); ++k) {
     std::vector<int>& loop = loops[order[k]];
     if (loop.size() < 3 || loop.size() > max_corners) continue;
     // The rim runs against the faces around it; the new face runs along it.

@@ -1,4 +1,4 @@
-// The remesher's extraction (remesh.hpp, Instant Meshes §5): samples whose
+// The remesher's extraction (remesh.hpp, after Instant Meshes): samples whose
 // lattice points coincide become one output vertex, samples one lattice
 // step apart an output edge, and faces are traced around the edges in
 // their angular order.

@@ -1,6 +1,6 @@
 // The remesher's fields (remesh.hpp): a multi-resolution hierarchy of the
 // samples' graph, the 4-RoSy orientation field and the 4-PoSy position
-// field solved on it coarse to fine (Instant Meshes §3-4).
+// field solved on it coarse to fine (Instant Meshes §3.1, §3.2, §4).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -77,7 +77,7 @@ FieldGraph coarsen(FieldGraph& fine) {
   std::vector<Candidate> candidates;
   for (std::size_t i = 0; i < n; ++i) {
     for (const int j : fine.adjacent[i]) {
-      if (static_cast<std::size_t>(j) <= i) continue;
+      if (at(j) <= i) continue;
       const double ai = std::max(fine.area[i], 1e-30);
       const double aj = std::max(fine.area[at(j)], 1e-30);
       candidates.push_back({fine.normal[i].dot(fine.normal[at(j)]) * std::max(ai / aj, aj / ai),

@@ -40,9 +40,8 @@ TriMesh to_trimesh(const PolygonMesh& input) {
   }
   for (const auto& face : input.faces) {
     for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-      const auto fh = tri.add_face(handles[static_cast<std::size_t>(face[0])],
-                                   handles[static_cast<std::size_t>(face[i])],
-                                   handles[static_cast<std::size_t>(face[i + 1])]);
+      const auto fh =
+          tri.add_face(handles[at(face[0])], handles[at(face[i])], handles[at(face[i + 1])]);
       if (!fh.is_valid()) throw std::logic_error("resample: checked mesh rejected by OpenMesh");
     }
   }
