@@ -7,7 +7,8 @@
 // line that made it and whether it was pulled through older loops. Loops
 // stack on needles; knit pulls a new loop through the stack, split moves the
 // stack to the opposite bed while pulling the new loop through it, xfer
-// moves it, drop lets it go.
+// moves it, drop lets it go. (machine.cpp; the carrier operations are in
+// machine_carriers.cpp.)
 //
 // Contract
 //   * Feed instructions in program order with `step`, then call `finish`
@@ -184,6 +185,8 @@ class Machine {
                  std::span<const LiveLoop> parents, bool has_parents);
   void check_stack(const knitout::Instruction& in, knitout::Needle needle, const NeedleSlot& s);
   std::uint16_t yarn_id(const knitout::CarrierList& carriers);
+  // 'text', as messages quote names.
+  static std::string quote(std::string_view text) { return "'" + std::string(text) + "'"; }
   void end_drop_run();
   void sweep(SweepKind kind, const knitout::Instruction& in, NeedleSlot* s, int slot);
   void end_sweep(std::uint32_t line);
