@@ -459,4 +459,18 @@ class StripMesher {
   std::unordered_map<std::uint64_t, int> min_segments_;
 };
 
+// ---------------------------------------------------------------------------
+// Step 5 (relax.cpp).
+
+// Step 5, relaxing (docs/stitch-mesh.md): the stitch vertices inside the
+// sheet move over the cut mesh so that the sides come closer to their
+// target lengths, course or wale; the boundary's vertices stay. Each sweep
+// moves each inner vertex to where its sides, as springs of their target
+// lengths, would hold it (each weighted by 1 / target^2, and less the
+// farther it is off, so a fan's chord across a hole does not drag the
+// sheet), then onto the nearest point of the surface. A move that turns an
+// incident face over is not made. The faces and their types do not change.
+// Returns the number of sweeps made.
+int relax_positions(StitchMesh& mesh, const LabelledDisc& disc, int sweeps);
+
 }  // namespace planner::stitch_meshing
