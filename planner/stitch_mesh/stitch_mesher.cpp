@@ -1,3 +1,5 @@
+// The steps are in files of their own (stitch_meshing.hpp lists them); this
+// file checks the input and runs them in order.
 #include "planner/stitch_mesh/stitch_mesher.hpp"
 
 #include <algorithm>
@@ -10,9 +12,6 @@
 #include <vector>
 
 #include "planner/stitch_mesh/stitch_meshing.hpp"
-
-// The steps are in files of their own (stitch_meshing.hpp lists them); this
-// file checks the input and runs them in order.
 
 namespace planner {
 namespace stitch_meshing {

@@ -1,6 +1,18 @@
 // Internals of the stitch mesher (stitch_mesher.hpp has the method and the
-// public interface): what its steps share. Only planner/stitch_mesh/ includes
-// this header.
+// public interface): the types and functions its steps share, in namespace
+// planner::stitch_meshing. Only planner/stitch_mesh/ includes this header.
+//
+//   geometry.cpp                  helpers: face normals, the disc as a surface, length cost
+//   row_time.cpp                  step 1: triangles, the row time t; step 2: rows by height
+//   row_time_critical_points.cpp  step 2: interior extrema levelled, saddles held on a level
+//   band_slices.cpp               step 2: triangles cut along the levels, strips
+//   chains.cpp                    step 3: a strip's boundary as bottom, top and wale chains
+//   row_sampling.cpp              step 3: stitch vertices along the chains, segment counts
+//   strips.cpp                    step 4: each strip brought to one bottom and one top chain
+//   zip.cpp                       step 4: the faces between the two chains
+//   relax.cpp                     step 5: inner stitch vertices relaxed over the surface
+//   stitch_mesher.cpp             the input check and the steps in order
+//   stitch_mesh_figures.cpp       figures of a finished stitch mesh
 #pragma once
 
 #include <Eigen/Core>

@@ -84,8 +84,9 @@ std::vector<std::pair<int, int>> StripMesher::zip_steps(const std::vector<int>& 
   auto wale_cost = [&](int i, int j) {
     const double len =
         (mesh_.positions[at(l[at(i0 + i)])] - mesh_.positions[at(t[at(j0 + j)])]).norm();
-    // Issue 8 counts wale sides within 15% of the target: one outside
-    // costs a step more than its squared error.
+    // A wale side more than kLengthTolerance (15%) off its target counts
+    // against the mesh's sizes: one outside costs outside_cost more than its
+    // squared error.
     return length_cost((len - params_.wale_mm) / params_.wale_mm, params_.outside_cost);
   };
   // Fig. 7 rules of thumb as costs (docs/stitch-mesh.md): no increase or
