@@ -1,1211 +1,159 @@
+// The steps are in files of their own (stitch_meshing.hpp lists them); this
+// file checks the input and runs them in order.
 #include "planner/stitch_mesh/stitch_mesher.hpp"
 
-#include <Eigen/Geometry>
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
-#include <functional>
-#include <limits>
-#include <map>
-#include <numbers>
-#include <numeric>
-#include <optional>
-#include <queue>
 #include <set>
 #include <stdexcept>
-#include <tuple>
-#include <unordered_map>
-#include <unordered_set>
+#include <string>
 #include <utility>
+#include <vector>
 
-#include "planner/common/index.hpp"
 #include "planner/stitch_mesh/stitch_meshing.hpp"
-#include "simulators/cloth/sdf.hpp"
 
 namespace planner {
 namespace stitch_meshing {
+namespace {
+
+// Saddles on a level (pin_saddles) are looked for in X-shaped strips and in
+// strips whose bottom and top chains differ in length by more than this
+// ratio, the longer at least kLopsidedWales wales long. 1.3 to 1.5 and 10
+// to 20 wales gave 37 of the 38 shared meshes meeting the size targets of
+// the shared-mesh test; without the length, jagged cut boundaries lost
+// stitches' shape (docs/stitch-mesh.md, "Saddles on a level").
+constexpr double kLopsidedRatio = 1.3;
+constexpr double kLopsidedWales = 20.0;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// ---------------------------------------------------------------------------
-// Steps 3-4: chains of each strip, stitch vertices, faces.
-
-// A saddle split (split_folds) takes a splitting edge up to this many wales
-// longer to make strips whose bottom and top lengths differ by one unit of
-// |ln(bottom / top)| less. 1 left the fans of `teddy-quad`; 2 and 4 gave the
-// same stitch meshes on the 38 shared meshes (docs/stitch-mesh.md, "Saddle
-// splits").
-constexpr double kSplitBalance = 2.0;
-
-// Saddles on a level (pin_saddles) are looked for in X-shaped strips and in
-// strips whose bottom and top chains differ in length by more than this
-// ratio, the longer at least kLopsidedWales wales long. 1.3 to 1.5 and 10
-// to 20 wales gave 37 of the 38 shared meshes meeting every figure of issue
-// 8; without the length, jagged cut boundaries lost stitches' shape
-// (docs/stitch-mesh.md, "Saddles on a level").
-constexpr double kLopsidedRatio = 1.3;
-constexpr double kLopsidedWales = 20.0;
-
-// A boundary run's sides are placed so that fewest fall more than
-// kLengthTolerance off their target (each costs this much more than its
-// squared relative error): with 1, 0.05 (the zip's outside_cost) or points
-// every course / 8, 16 or 32, all 38 shared meshes met the size targets of
-// the shared-mesh test (docs/stitch-mesh.md, step 3).
-constexpr double kBoundaryOutsideCost = 1.0;
-
-struct Builder {
-  const LabelledDisc& disc;
-  const StitchMeshParams& params;
-  const BandSlices& slices;
-  StitchMesh mesh;
-  std::unordered_map<int, int> anchor;  // slice vertex -> stitch vertex
-  // Level curve (by any of its undirected slice edges) -> its stitch vertices
-  // in the order of the first strip that sampled it, and that order's first slice vertex.
-  std::unordered_map<std::uint64_t, int> curve_of_edge;
-  std::vector<std::vector<int>> curve_samples;
-  std::vector<int> curve_first;
-  std::vector<std::string> problems;
-  StitchMeshStats stats;
-  // Bottom sides (as the row above walks them) of increases and decreases.
-  std::unordered_set<std::uint64_t> shaped_below;
-  // Course-out sides (as the row above walks them) -> the face below.
-  std::unordered_map<std::uint64_t, std::size_t> face_below;
-  // Level curve (by any of its undirected slice edges) -> fewest segments.
-  std::unordered_map<std::uint64_t, int> min_segments;
-
-  int stitch_vertex(int slice_vertex) {
-    auto [it, inserted] = anchor.emplace(slice_vertex, 0);
-    if (inserted) {
-      it->second = static_cast<int>(mesh.positions.size());
-      mesh.positions.push_back(slices.position(slice_vertex));
-    }
-    return it->second;
-  }
-
-  std::int32_t arc_of(int h) const {
-    const int f = slices.source_face[at(h)];
-    if (f < 0 || disc.arcs.empty()) return kNoArc;
-    return disc.arcs[at(f)][at(slices.source_side[at(h)])];
-  }
-
-  // A boundary run's length in straight steps of course_mm: a jagged cut
-  // boundary is longer along its edges than across the stitches it holds
-  // (docs/stitch-mesh.md, step 3).
-  double straight_length(const Run& run) const {
-    const std::vector<double> along = lengths_along(run.halfedges);
-    const std::vector<double> walk = straight_walk(run.halfedges, along, params.course_mm);
-    const Vec3 last = walk.empty() ? slices.position(slices.from(run.halfedges.front()))
-                                   : point_along(run.halfedges, along, walk.back());
-    const Vec3 end = slices.position(slices.to(run.halfedges.back()));
-    return static_cast<double>(walk.size()) * params.course_mm + (end - last).norm();
-  }
-
-  // Segments of a run `length` long: one per ~course_mm.
-  int auto_count(double length) const {
-    return std::max(1, static_cast<int>(std::lround(length / params.course_mm)));
-  }
-
-  // Arc length at the end of each half-edge of a polyline (0 first).
-  std::vector<double> lengths_along(const std::vector<int>& halfedges) const {
-    std::vector<double> along{0};
-    for (int h : halfedges) {
-      along.push_back(along.back() + slices.length(h));
-    }
-    return along;
-  }
-
-  // The point of a polyline at arc length t.
-  Vec3 point_along(const std::vector<int>& halfedges, const std::vector<double>& along,
-                   double t) const {
-    std::size_t k = 0;
-    while (k + 1 < halfedges.size() && along[k + 1] < t) ++k;
-    const double span = along[k + 1] - along[k];
-    const double w = span > 0 ? std::clamp((t - along[k]) / span, 0.0, 1.0) : 0.0;
-    return (1 - w) * slices.position(slices.from(halfedges[k])) +
-           w * slices.position(slices.to(halfedges[k]));
-  }
-
-  // Arc lengths of the points of a walk along a polyline that steps `step`
-  // in a straight line each time from its start.
-  std::vector<double> straight_walk(const std::vector<int>& halfedges,
-                                    const std::vector<double>& along, double step) const {
-    std::vector<double> out;
-    Vec3 last = slices.position(slices.from(halfedges.front()));
-    for (std::size_t k = 0; k < halfedges.size(); ++k) {
-      const Vec3 a = slices.position(slices.from(halfedges[k]));
-      const Vec3 e = slices.position(slices.to(halfedges[k])) - a;
-      double from = 0;
-      while (true) {
-        // The farther point of this half-edge `step` from the last one.
-        const std::optional<double> exit = sphere_exit(a, e, last, step);
-        if (!exit) break;
-        const double t = *exit;
-        if (t > 1 || t < from) break;
-        last = a + t * e;
-        from = t;
-        out.push_back(along[k] + t * (along[k + 1] - along[k]));
-      }
-    }
-    return out;
-  }
-
-  // Arc lengths of the n - 1 inner points of a boundary run cut into n
-  // straight sides as close to course_mm as can be: fewest sides off by more
-  // than 15%, then the least squared relative deviation (dynamic programming
-  // over points every course_mm / 16 along the run). A jagged or folded cut
-  // boundary is longer along its edges than across the stitches it holds:
-  // the sides are its chords (docs/stitch-mesh.md, step 3).
-  std::vector<double> straight_sides(const std::vector<int>& halfedges,
-                                     const std::vector<double>& along, int n) const {
-    const double spacing = params.course_mm / 16;
-    std::vector<Vec3> point;
-    std::vector<double> arc;
-    for (std::size_t k = 0; k < halfedges.size(); ++k) {
-      const Vec3 a = slices.position(slices.from(halfedges[k]));
-      const Vec3 b = slices.position(slices.to(halfedges[k]));
-      const int parts =
-          std::max(1, static_cast<int>(std::ceil((along[k + 1] - along[k]) / spacing)));
-      for (int i = 0; i < parts; ++i) {
-        const double w = static_cast<double>(i) / parts;
-        point.push_back((1 - w) * a + w * b);
-        arc.push_back(along[k] + w * (along[k + 1] - along[k]));
-      }
-    }
-    point.push_back(slices.position(slices.to(halfedges.back())));
-    arc.push_back(along.back());
-    const std::size_t m = point.size();
-    // A side spans at most this much of the run's length.
-    const double reach = 3 * std::max(params.course_mm, along.back() / n);
-    auto cost = [&](const Vec3& a, const Vec3& b) {
-      return length_cost((a - b).norm() / params.course_mm - 1, kBoundaryOutsideCost);
-    };
-    constexpr double kNone = std::numeric_limits<double>::infinity();
-    std::vector<double> previous(m, kNone);
-    std::vector<double> current(m, kNone);
-    std::vector<std::uint32_t> from(static_cast<std::size_t>(n) * m, 0);
-    previous[0] = 0;
-    for (int k = 1; k <= n; ++k) {
-      std::fill(current.begin(), current.end(), kNone);
-      std::size_t first = 0;
-      for (std::size_t j = 1; j < m; ++j) {
-        while (arc[j] - arc[first] > reach) ++first;
-        for (std::size_t i = first; i < j; ++i) {
-          if (previous[i] == kNone) continue;
-          const double c = previous[i] + cost(point[i], point[j]);
-          if (c < current[j]) {
-            current[j] = c;
-            from[static_cast<std::size_t>(k - 1) * m + j] = static_cast<std::uint32_t>(i);
-          }
-        }
-      }
-      std::swap(previous, current);
-    }
-    if (previous[m - 1] == kNone) return {};
-    std::vector<double> out(static_cast<std::size_t>(n - 1));
-    std::size_t j = m - 1;
-    for (int k = n; k > 1; --k) {
-      j = from[static_cast<std::size_t>(k - 1) * m + j];
-      out[at(k - 2)] = arc[j];
-    }
-    return out;
-  }
-
-  // Stitch vertices along a run, n segments (arcs[i] for segment i): evenly
-  // along it, or with `straight` (a boundary run) in n straight sides as
-  // close to course_mm as can be (straight_sides), so the stitches along a
-  // jagged boundary are as wide as the others.
-  std::vector<int> sample(const std::vector<int>& halfedges, std::vector<std::int32_t>* arcs, int n,
-                          bool straight = false) {
-    const std::vector<double> along = lengths_along(halfedges);
-    const double total = along.back();
-    std::vector<double> at_length;
-    for (int i = 1; i < n; ++i) at_length.push_back(total * i / n);
-    if (straight && n > 1) {
-      std::vector<double> sides = straight_sides(halfedges, along, n);
-      if (!sides.empty()) at_length = std::move(sides);
-    }
-    std::vector<int> out{stitch_vertex(slices.from(halfedges.front()))};
-    for (int i = 1; i <= n; ++i) {
-      const double s = i < n ? at_length[at(i - 1)] : total;
-      const double mid = 0.5 * ((i > 1 ? at_length[at(i - 2)] : 0.0) + s);
-      std::size_t m = 0;
-      while (m + 1 < halfedges.size() && along[m + 1] < mid) ++m;
-      if (arcs != nullptr) arcs->push_back(arc_of(halfedges[m]));
-      if (i == n) {
-        out.push_back(stitch_vertex(slices.to(halfedges.back())));
-        break;
-      }
-      out.push_back(static_cast<int>(mesh.positions.size()));
-      mesh.positions.push_back(point_along(halfedges, along, s));
-    }
-    return out;
-  }
-
-  std::uint64_t undirected(int h) const {
-    const int a = slices.from(h);
-    const int b = slices.to(h);
-    return key(std::min(a, b), std::max(a, b));
-  }
-
-  // A level curve is sampled once (by the strip below it, with n segments);
-  // the strip above reuses the samples.
-  const std::vector<int>* sampled_curve(const Run& run) const {
-    auto it = curve_of_edge.find(undirected(run.halfedges.front()));
-    return it == curve_of_edge.end() ? nullptr : &curve_samples[at(it->second)];
-  }
-
-  std::vector<int> level_samples(const Run& run, int n) {
-    auto it = curve_of_edge.find(undirected(run.halfedges.front()));
-    if (it == curve_of_edge.end()) {
-      const int id = static_cast<int>(curve_samples.size());
-      curve_samples.push_back(sample(run.halfedges, nullptr, n));
-      curve_first.push_back(slices.from(run.halfedges.front()));
-      for (int h : run.halfedges) curve_of_edge[undirected(h)] = id;
-      return curve_samples.back();
-    }
-    std::vector<int> samples = curve_samples[at(it->second)];
-    if (curve_first[at(it->second)] != slices.from(run.halfedges.front())) {
-      std::reverse(samples.begin(), samples.end());
-    }
-    return samples;
-  }
-
-  // Fewest segments a run may have: one, or for a level curve what the strip
-  // above it needs (plan_minimums).
-  int minimum(const Run& run) const {
-    if (!run.level) return 1;
-    auto it = min_segments.find(undirected(run.halfedges.front()));
-    return it == min_segments.end() ? 1 : it->second;
-  }
-
-  // Segments per run of a chain: fixed for level curves sampled already,
-  // else ~length / course_mm.
-  std::vector<int> run_counts(const Chain& chain) const {
-    std::vector<int> counts;
-    for (const Run& run : chain.runs) {
-      const std::vector<int>* done = run.level ? sampled_curve(run) : nullptr;
-      counts.push_back(
-          done != nullptr
-              ? static_cast<int>(done->size()) - 1
-              : std::max(minimum(run), auto_count(run.level ? run.length : straight_length(run))));
-    }
-    return counts;
-  }
-
-  // Before any strip is zipped: a strip whose bottom is one level curve and
-  // whose top needs more sides (one for each run, or the run's own minimum)
-  // than twice that curve's sides can feed asks the strip below to sample the
-  // curve more finely. Called from the top row down, so a minimum passes
-  // down through as many rows as need it.
-  void plan_minimums(const std::vector<Chain>& loop) {
-    const Chain* low = nullptr;
-    int lows = 0;
-    int highs = 0;
-    int top_runs = 0;
-    for (const Chain& c : loop) {
-      if (c.side == Side::Low) {
-        ++lows;
-        low = &c;
-      } else if (c.side == Side::High) {
-        ++highs;
-        top_runs = 0;
-        for (const Run& run : c.runs) top_runs += minimum(run);
-      }
-    }
-    if (lows != 1 || highs != 1 || low->runs.size() != 1 || !low->runs.front().level) return;
-    int shared = 2;
-    for (const Chain& c : loop) shared -= c.side == Side::Wale;
-    shared = std::max(0, shared);
-    const int need = shared + (std::max(0, top_runs - shared) + 1) / 2;
-    if (need <= 1) return;
-    for (int h : low->runs.front().halfedges) {
-      int& m = min_segments[undirected(h)];
-      m = std::max(m, need);
-    }
-  }
-
-  // Changes the free runs' counts (not fixed ones) so they sum to `total`
-  // where possible, in proportion to their length; each keeps its minimum.
-  void rescale(const Chain& chain, const std::vector<bool>& fixed, std::vector<int>& counts,
-               int total) const {
-    int current = std::accumulate(counts.begin(), counts.end(), 0);
-    for (int guard = 0; current != total && guard < 100000; ++guard) {
-      // Add to the free run with the longest segments, or take from the one
-      // with the shortest.
-      int best = -1;
-      double best_value = 0;
-      for (std::size_t r = 0; r < counts.size(); ++r) {
-        if (fixed[r]) continue;
-        const double per = chain.runs[r].length / counts[r];
-        if (current < total) {
-          if (best < 0 || per > best_value) best = static_cast<int>(r), best_value = per;
-        } else if (counts[r] > minimum(chain.runs[r])) {
-          if (best < 0 || per < best_value) best = static_cast<int>(r), best_value = per;
-        }
-      }
-      if (best < 0) return;
-      counts[at(best)] += current < total ? 1 : -1;
-      current += current < total ? 1 : -1;
-    }
-  }
-
-  std::vector<bool> fixed_runs(const Chain& chain) const {
-    std::vector<bool> fixed;
-    for (const Run& run : chain.runs) fixed.push_back(run.level && sampled_curve(run) != nullptr);
-    return fixed;
-  }
-
-  // Vertices of a course chain and the arcs of its segments.
-  std::vector<int> chain_vertices(const Chain& chain, const std::vector<int>& counts,
-                                  std::vector<std::int32_t>& arcs,
-                                  std::vector<bool>* on_level = nullptr) {
-    std::vector<int> out;
-    for (std::size_t r = 0; r < chain.runs.size(); ++r) {
-      const Run& run = chain.runs[r];
-      std::vector<std::int32_t> run_arcs;
-      std::vector<int> v;
-      if (run.level) {
-        v = level_samples(run, counts[r]);
-        run_arcs.assign(v.size() - 1, kNoArc);
-      } else {
-        v = sample(run.halfedges, &run_arcs, counts[r], /*straight=*/true);
-      }
-      if (!out.empty() && out.back() == v.front()) {
-        out.insert(out.end(), v.begin() + 1, v.end());
-      } else {
-        if (!out.empty()) {
-          throw std::logic_error("stitch meshing: chain runs do not meet");
-        }
-        out = v;
-      }
-      arcs.insert(arcs.end(), run_arcs.begin(), run_arcs.end());
-      if (on_level != nullptr) on_level->insert(on_level->end(), run_arcs.size(), run.level);
-    }
-    return out;
-  }
-
-  void add_face(std::vector<int> vertices, std::vector<EdgeRole> roles,
-                std::vector<std::int32_t> arcs) {
-    StitchFace face;
-    face.vertices.assign(vertices.begin(), vertices.end());
-    face.roles = std::move(roles);
-    face.arcs = std::move(arcs);
-    const std::optional<FaceType> type = classify_roles(face.roles);
-    if (!type) ++stats.invalid_faces;
-    face.type = type.value_or(FaceType::Knit);
-    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
-      if (face.roles[i] == EdgeRole::CourseOut) {
-        face_below[key(static_cast<int>(face.vertices[(i + 1) % face.vertices.size()]),
-                       static_cast<int>(face.vertices[i]))] = mesh.faces.size();
-      }
-    }
-    if (face.type == FaceType::Increase || face.type == FaceType::Decrease) {
-      // Remember the pentagon's top sides, as the row above walks them.
-      const std::size_t n = face.vertices.size();
-      for (std::size_t i = 0; i < n; ++i) {
-        if (face.roles[i] == EdgeRole::CourseOut) {
-          shaped_below.insert(key(static_cast<int>(face.vertices[(i + 1) % n]),
-                                  static_cast<int>(face.vertices[i])));
-        }
-      }
-    }
-    mesh.faces.push_back(std::move(face));
-  }
-
-  std::int32_t wale_arc(const Chain& chain) const {
-    std::vector<int> all;
-    double total = 0;
-    for (const Run& r : chain.runs) {
-      for (int h : r.halfedges) {
-        all.push_back(h);
-        total += slices.length(h);
-      }
-    }
-    double walked = 0;
-    for (int h : all) {
-      walked += slices.length(h);
-      if (walked >= 0.5 * total) return arc_of(h);
-    }
-    return all.empty() ? kNoArc : arc_of(all.back());
-  }
-
-  // Sides taken from the bottom and top chain by each face between the wale
-  // sides (l[i0], t[j0]) and (l[i1], t[j1]). Each step is (1, 1), (2, 1) or
-  // (1, 2) when the chains allow it (neither more than twice the other);
-  // otherwise the counts are spread evenly and the faces come out invalid.
-  std::vector<std::pair<int, int>> zip_steps(const std::vector<int>& l, const std::vector<int>& t,
-                                             int i0, int j0, int i1, int j1, bool left_boundary,
-                                             bool right_boundary) const {
-    const int na = i1 - i0;
-    const int nb = j1 - j0;
-    std::vector<std::pair<int, int>> steps;
-    if (na > 2 * nb || nb > 2 * na) {
-      const int faces = std::min(na, nb);
-      for (int f = 0; f < faces; ++f) {
-        const int cb = (f + 1) * na / faces - f * na / faces;
-        const int ct = (f + 1) * nb / faces - f * nb / faces;
-        steps.push_back({cb, ct});
-      }
-      return steps;
-    }
-    const double inf = std::numeric_limits<double>::infinity();
-    const int width = nb + 1;
-    // State: wale side (i, j) reached by move m (0 knit, 1 decrease, 2 increase).
-    auto index = [&](int i, int j, int m) { return at(((i * width) + j) * 3 + m); };
-    std::vector<double> cost(at((na + 1) * width * 3), inf);
-    std::vector<std::int8_t> came(at((na + 1) * width * 3), -1);
-    auto wale_cost = [&](int i, int j) {
-      const double len =
-          (mesh.positions[at(l[at(i0 + i)])] - mesh.positions[at(t[at(j0 + j)])]).norm();
-      // Issue 8 counts wale sides within 15% of the target: one outside
-      // costs a step more than its squared error.
-      return length_cost((len - params.wale_mm) / params.wale_mm, params.outside_cost);
-    };
-    // Fig. 7 rules of thumb as costs (docs/stitch-mesh.md): no increase or
-    // decrease at a row's end on the boundary, none on a bottom side made by
-    // an increase or decrease of the row below, and no increase beside a
-    // decrease.
-    auto shaped = [&](int i, int count) {
-      for (int k = 0; k < count; ++k) {
-        if (shaped_below.count(key(l[at(i0 + i + k)], l[at(i0 + i + k + 1)])) != 0) return true;
-      }
-      return false;
-    };
-    const std::array<std::pair<int, int>, 3> moves{{{1, 1}, {2, 1}, {1, 2}}};
-    const double pentagon =
-        params.pentagon_cost;  // prefer knit stitches where rows keep their length
-    const double rule = params.stability_cost;
-    cost[index(0, 0, 0)] = wale_cost(0, 0);
-    for (int i = 0; i <= na; ++i) {
-      for (int j = 0; j <= nb; ++j) {
-        for (int last = 0; last < 3; ++last) {
-          const double here = cost[index(i, j, last)];
-          if (here == inf) continue;
-          for (std::size_t m = 0; m < moves.size(); ++m) {
-            const int ni = i + moves[m].first;
-            const int nj = j + moves[m].second;
-            if (ni > na || nj > nb) continue;
-            // Stay where the end can still be reached.
-            const int ra = na - ni;
-            const int rb = nb - nj;
-            if (ra > 2 * rb || rb > 2 * ra) continue;
-            double c = here + wale_cost(ni, nj);
-            if (m != 0) {
-              c += pentagon;
-              if ((i == 0 && j == 0 && left_boundary) || (ni == na && nj == nb && right_boundary)) {
-                c += rule;  // rule 1: shaping at the edge of the fabric
-              }
-              if (shaped(i, moves[m].first)) c += rule;  // rule 2: stacked shaping
-              if (last != 0 && last != static_cast<int>(m))
-                c += rule;  // rule 3: increase by decrease
-            }
-            if (c < cost[index(ni, nj, static_cast<int>(m))]) {
-              cost[index(ni, nj, static_cast<int>(m))] = c;
-              came[index(ni, nj, static_cast<int>(m))] = static_cast<std::int8_t>(last);
-            }
-          }
-        }
-      }
-    }
-    int best = 0;
-    for (int m = 1; m < 3; ++m) {
-      if (cost[index(na, nb, m)] < cost[index(na, nb, best)]) best = m;
-    }
-    if (cost[index(na, nb, best)] == inf) {
-      throw std::logic_error("stitch meshing: zip found no path although the chains allow one");
-    }
-    for (int i = na, j = nb, m = best; i > 0 || j > 0;) {
-      const auto move = moves[at(m)];
-      const int previous = came[index(i, j, m)];
-      steps.push_back(move);
-      i -= move.first;
-      j -= move.second;
-      m = previous;
-    }
-    std::reverse(steps.begin(), steps.end());
-    return steps;
-  }
-
-  int first_vertex(const Chain& c) const { return slices.from(c.runs.front().halfedges.front()); }
-  int last_vertex(const Chain& c) const { return slices.to(c.runs.back().halfedges.back()); }
-
-  // A strip around saddles of the row time (m >= 2 bottom and m top chains,
-  // alternating; X-shaped for one saddle): one wale edge between two corners
-  // two course chains apart (a corner is where a bottom and a top chain
-  // meet) cuts off a simple strip of the two chains between them, and leaves
-  // m - 1 pairs. A side chain at such a corner is first joined to the
-  // bottom chain there (cast-on stitches), so the corner is a point. Of the
-  // 2m possible edges the one of least cost is used; the rest is split again.
-  // The cost is the edge's length plus, for each of the two strips it makes,
-  // kSplitBalance wales per unit of |ln(bottom / top)|: a strip whose bottom
-  // is much longer or shorter than its top is zipped with a run of decreases
-  // or increases whose wale sides fan out across it (docs/stitch-mesh.md,
-  // "Saddle splits"), so the split pairs chains of like length where the
-  // edges differ little.
-  bool split_folds(const std::string& where, std::vector<Chain> loop) {
-    while (loop.front().side != Side::Low) std::rotate(loop.begin(), loop.begin() + 1, loop.end());
-    std::vector<Chain> courses;
-    std::vector<Chain> sides;    // side chain after each course chain
-    std::vector<bool> has_side;  // a boundary side, or an edge made by an earlier split
-    for (Chain& c : loop) {
-      if (c.side == Side::Wale) {
-        if (courses.empty() || has_side.back()) return false;
-        sides.back() = std::move(c);
-        has_side.back() = true;
-      } else {
-        if (!courses.empty() && courses.back().side == c.side) return false;
-        if (c.runs.empty()) return false;
-        courses.push_back(std::move(c));
-        Chain none;
-        none.side = Side::Wale;
-        sides.push_back(std::move(none));
-        has_side.push_back(false);
-      }
-    }
-    const std::size_t n = courses.size();
-    if (n < 4 || n % 2 != 0) return false;
-    // An edge of an earlier split cannot join a bottom chain.
-    auto usable = [&](std::size_t k) { return !has_side[k] || !sides[k].runs.empty(); };
-    // Corner after course chain k once its side chain has joined a bottom chain.
-    auto corner = [&](std::size_t k) {
-      if (courses[k].side == Side::Low) {
-        return sides[k].runs.empty() ? last_vertex(courses[k]) : last_vertex(sides[k]);
-      }
-      return sides[k].runs.empty() ? first_vertex(courses[(k + 1) % n]) : first_vertex(sides[k]);
-    };
-    std::size_t pick = 0;
-    double least = std::numeric_limits<double>::infinity();
-    bool found = false;
-    // Bottom and top lengths of the cut-off strip (chains k+1, k+2) and the rest.
-    auto imbalance = [&](std::size_t k) {
-      std::array<double, 4> length{};  // part bottom, part top, rest bottom, rest top
-      for (std::size_t j = 0; j < n; ++j) {
-        const bool in_part = j == (k + 1) % n || j == (k + 2) % n;
-        const bool top = courses[j].side == Side::High;
-        length[at((in_part ? 0 : 2) + (top ? 1 : 0))] += chain_length(courses[j]);
-      }
-      const double floor = 1e-3 * params.course_mm;
-      double sum = 0;
-      for (int i : {0, 2}) {
-        sum +=
-            std::abs(std::log(std::max(length[at(i)], floor) / std::max(length[at(i + 1)], floor)));
-      }
-      return sum;
-    };
-    for (std::size_t k = 0; k < n; ++k) {
-      if (!usable(k) || !usable((k + 2) % n)) continue;
-      found = true;
-      const double cost =
-          (slices.position(corner(k)) - slices.position(corner((k + 2) % n))).norm() +
-          kSplitBalance * params.wale_mm * imbalance(k);
-      if (cost < least) {
-        least = cost;
-        pick = k;
-      }
-    }
-    if (!found) return false;
-    for (std::size_t k : {pick, (pick + 2) % n}) {
-      if (!has_side[k]) continue;
-      has_side[k] = false;
-      if (courses[k].side == Side::Low) {
-        for (Run& r : sides[k].runs) courses[k].runs.push_back(std::move(r));
-      } else {
-        Chain& next = courses[(k + 1) % n];
-        next.runs.insert(next.runs.begin(), sides[k].runs.begin(), sides[k].runs.end());
-      }
-      sides[k].runs.clear();
-    }
-    for (Chain& c : courses) join_boundary_runs(c);
-    Chain edge;  // the splitting wale edge: no boundary runs
-    edge.side = Side::Wale;
-    auto with_side = [&](std::vector<Chain>& out, std::size_t k) {
-      out.push_back(courses[k]);
-      if (has_side[k]) out.push_back(sides[k]);
-    };
-    // Cut off: course chains pick+1 and pick+2 with the edge; the rest keeps
-    // the edge on its other side.
-    std::vector<Chain> part;
-    with_side(part, (pick + 1) % n);
-    part.push_back(courses[(pick + 2) % n]);  // its side was joined or is empty
-    part.push_back(edge);
-    std::vector<Chain> rest;
-    for (std::size_t k = (pick + 3) % n; k != (pick + 1) % n; k = (k + 1) % n) {
-      if (k == pick) {
-        rest.push_back(courses[k]);
-        rest.push_back(edge);
-      } else {
-        with_side(rest, k);
-      }
-    }
-    ++stats.saddles_split;
-    strip(where + " (fold)", std::move(part));
-    strip(where + " (rest)", std::move(rest));
-    return true;
-  }
-
-  // Which ends of a strip of a bottom and b top sides, the chains sharing
-  // their left and/or right end, get a short-row triangle (§6.3).
-  static std::pair<bool, bool> end_triangles(int a, int b, bool left_shared, bool right_shared) {
-    const bool room_for_both = a >= 2 && b >= 2;
-    const bool left = left_shared && (room_for_both || !right_shared) && a >= 1 && b >= 1;
-    const bool right = right_shared && (room_for_both || !left_shared) && a >= 1 && b >= 1 &&
-                       !(left && (a < 2 || b < 2));
-    return {left, right};
-  }
-
-  // Whether the zip below can make only valid faces from a bottom chain of
-  // a and a top chain of b segments (after the end triangles of shared ends,
-  // neither more than twice the other).
-  static bool zippable(int a, int b, bool left_shared, bool right_shared, const Chain& high,
-                       const std::vector<int>& high_counts) {
-    if (left_shared && right_shared && a == 1 && b == 2 && high.runs.size() == 2 &&
-        high_counts[0] == 1 && high.runs[0].level != high.runs[1].level) {
-      return true;  // a short-row triangle with a boundary wale side
-    }
-    if (left_shared && right_shared && a == 1 && b == 1) return true;  // a lens
-    const auto [left, right] = end_triangles(a, b, left_shared, right_shared);
-    // A shared end without its triangle would give the face there a wale
-    // side of no length.
-    if ((left_shared && !left) || (right_shared && !right)) return false;
-    const int na = a - left - right;
-    const int nb = b - left - right;
-    return (na == 0 && nb == 0) || (na > 0 && nb > 0 && na <= 2 * nb && nb <= 2 * na);
-  }
-
-  // Moves the longer boundary run at an end of the top chain (loop starts
-  // with its bottom chain) into the wale side beside it. False when neither
-  // end of the top chain is a boundary run or it has only one run.
-  static bool boundary_end_to_side(std::vector<Chain>& loop) {
-    std::size_t hi = 0;
-    while (hi < loop.size() && loop[hi].side != Side::High) ++hi;
-    if (hi == loop.size() || loop[hi].runs.size() < 2) return false;
-    std::vector<Run>& runs = loop[hi].runs;
-    const bool front = !runs.front().level;
-    const bool back = !runs.back().level;
-    if (!front && !back) return false;
-    if (front && (!back || runs.front().length >= runs.back().length)) {
-      Run run = std::move(runs.front());
-      runs.erase(runs.begin());
-      if (loop[hi - 1].side == Side::Wale) {
-        loop[hi - 1].runs.push_back(std::move(run));
-      } else {
-        Chain side;
-        side.side = Side::Wale;
-        side.runs.push_back(std::move(run));
-        loop.insert(loop.begin() + static_cast<std::ptrdiff_t>(hi), std::move(side));
-      }
-      return true;
-    }
-    Run run = std::move(runs.back());
-    runs.pop_back();
-    if (hi + 1 < loop.size() && loop[hi + 1].side == Side::Wale) {
-      loop[hi + 1].runs.insert(loop[hi + 1].runs.begin(), std::move(run));
-    } else {
-      Chain side;
-      side.side = Side::Wale;
-      side.runs.push_back(std::move(run));
-      loop.insert(loop.begin() + static_cast<std::ptrdiff_t>(hi) + 1, std::move(side));
-    }
-    return true;
-  }
-
-  // A decrease whose course-out side was split at `middle` (two sides in,
-  // two out) becomes two knit stitches sharing a wale edge.
-  void split_decrease(std::size_t index, int middle) {
-    const StitchFace old = mesh.faces[index];
-    const std::size_t n = old.vertices.size();
-    std::size_t corner = n;  // the vertex between the two course-in sides
-    std::size_t top = n;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (old.roles[i] == EdgeRole::CourseIn && old.roles[(i + n - 1) % n] == EdgeRole::CourseIn) {
-        corner = i;
-      }
-      if (static_cast<int>(old.vertices[i]) == middle) top = i;
-    }
-    if (corner == n || top == n) {
-      throw std::logic_error("stitch meshing: a split decrease has no corner to join");
-    }
-    auto part = [&](std::size_t from, std::size_t to) {
-      StitchFace f;
-      for (std::size_t i = from; i != to; i = (i + 1) % n) {
-        f.vertices.push_back(old.vertices[i]);
-        f.roles.push_back(old.roles[i]);
-        f.arcs.push_back(old.arcs[i]);
-      }
-      f.vertices.push_back(old.vertices[to]);
-      f.roles.push_back(EdgeRole::Wale);
-      f.arcs.push_back(kNoArc);
-      const std::optional<FaceType> type = classify_roles(f.roles);
-      if (type != FaceType::Knit) {
-        throw std::logic_error("stitch meshing: a split decrease did not give knit stitches");
-      }
-      f.type = FaceType::Knit;
-      return f;
-    };
-    mesh.faces[index] = part(corner, top);
-    mesh.faces.push_back(part(top, corner));
-    for (std::size_t f : {index, mesh.faces.size() - 1}) {
-      const StitchFace& face = mesh.faces[f];
-      for (std::size_t i = 0; i < face.vertices.size(); ++i) {
-        if (face.roles[i] == EdgeRole::CourseOut) {
-          face_below[key(static_cast<int>(face.vertices[(i + 1) % face.vertices.size()]),
-                         static_cast<int>(face.vertices[i]))] = f;
-        }
-      }
-    }
-  }
-
-  // Splits the longest side of a fixed bottom chain whose face below is a
-  // knit stitch (it becomes an increase, §6.3) or a decrease (it becomes two
-  // knit stitches), or that has no face below (a cast-on side, possibly
-  // under glued lenses: one more stitch is cast on), so the bottom chain has
-  // one more side. False when no side qualifies.
-  bool split_side_below(const Chain& low) {
-    constexpr std::size_t kNoFace = std::numeric_limits<std::size_t>::max();
-    double longest = 0;
-    std::size_t best_curve = 0;
-    std::size_t best_index = 0;
-    std::size_t best_face = 0;
-    bool found = false;
-    for (const Run& run : low.runs) {
-      if (!run.level) continue;
-      auto it = curve_of_edge.find(undirected(run.halfedges.front()));
-      if (it == curve_of_edge.end()) continue;
-      const std::vector<int>& samples = curve_samples[at(it->second)];
-      for (std::size_t k = 0; k + 1 < samples.size(); ++k) {
-        const int u = samples[k];
-        const int v = samples[k + 1];
-        const double length = (mesh.positions[at(u)] - mesh.positions[at(v)]).norm();
-        auto below = face_below.find(key(u, v));
-        if (below == face_below.end()) below = face_below.find(key(v, u));
-        if (below == face_below.end()) {
-          // Nothing below: the side was cast on (directly, or through
-          // lenses glued onto a cast-on side), and casting on one more
-          // stitch there changes no face.
-          if (length > longest) {
-            longest = length;
-            best_curve = at(it->second);
-            best_index = k;
-            best_face = kNoFace;
-            found = true;
-          }
-          continue;
-        }
-        const FaceType type = mesh.faces[below->second].type;
-        if (type != FaceType::Knit && type != FaceType::Decrease) continue;
-        if (length > longest) {
-          longest = length;
-          best_curve = at(it->second);
-          best_index = k;
-          best_face = below->second;
-          found = true;
-        }
-      }
-    }
-    if (!found) return false;
-    std::vector<int>& samples = curve_samples[best_curve];
-    const int u = samples[best_index];
-    const int v = samples[best_index + 1];
-    const int middle = static_cast<int>(mesh.positions.size());
-    mesh.positions.push_back(0.5 * (mesh.positions[at(u)] + mesh.positions[at(v)]));
-    samples.insert(samples.begin() + static_cast<std::ptrdiff_t>(best_index) + 1, middle);
-    if (best_face == kNoFace) {
-      ++stats.sides_split_below;
-      return true;
-    }
-    StitchFace& face = mesh.faces[best_face];
-    const std::size_t n = face.vertices.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const int a = static_cast<int>(face.vertices[i]);
-      const int b = static_cast<int>(face.vertices[(i + 1) % n]);
-      if (face.roles[i] != EdgeRole::CourseOut || !((a == u && b == v) || (a == v && b == u))) {
-        continue;
-      }
-      face.vertices.insert(face.vertices.begin() + static_cast<std::ptrdiff_t>(i) + 1,
-                           static_cast<std::uint32_t>(middle));
-      face.roles.insert(face.roles.begin() + static_cast<std::ptrdiff_t>(i) + 1,
-                        EdgeRole::CourseOut);
-      face.arcs.insert(face.arcs.begin() + static_cast<std::ptrdiff_t>(i) + 1, face.arcs[i]);
-      face_below.erase(key(b, a));
-      ++stats.sides_split_below;
-      if (face.type == FaceType::Decrease) {
-        // Two sides in, two out: a wale edge from the corner between the
-        // course-in sides to the new vertex makes two knit stitches.
-        shaped_below.erase(key(b, a));
-        split_decrease(best_face, middle);
-        return true;
-      }
-      face.type = FaceType::Increase;
-      face_below[key(middle, a)] = best_face;
-      face_below[key(b, middle)] = best_face;
-      shaped_below.insert(key(middle, a));
-      shaped_below.insert(key(b, middle));
-      return true;
-    }
-    throw std::logic_error("stitch meshing: a course-out side is not in its face");
-  }
-
-  void strip(const std::string& where, std::vector<Chain> loop) {
-    // Bring the loop to the form Low [Wale] High [Wale].
-    int lows = 0;
-    int highs = 0;
-    for (const Chain& c : loop) {
-      lows += c.side == Side::Low;
-      highs += c.side == Side::High;
-    }
-    if (lows == 0 || highs == 0) {
-      const Side missing = lows == 0 ? Side::Low : Side::High;
-      int walesides = 0;
-      for (Chain& c : loop) walesides += c.side == Side::Wale;
-      if (walesides == 1 && loop.size() == 2) {
-        for (Chain& c : loop) {
-          if (c.side == Side::Wale) c.side = missing;
-        }
-        lows = highs = 1;
-      }
-    }
-    if (loop.size() == 1 && loop.front().side != Side::Wale && !boundary_only(loop.front()) &&
-        std::any_of(loop.front().runs.begin(), loop.front().runs.end(),
-                    [](const Run& r) { return !r.level; })) {
-      // One course chain all round: a level curve closed by boundary that
-      // faces the same way, or by a stretch of boundary too short to face
-      // either way (the row begins or ends at a tip of the boundary, which
-      // happens where rows are tall against the cut's features). The longest
-      // stretch of boundary is the other chain.
-      Chain& only = loop.front();
-      const Side other = only.side == Side::Low ? Side::High : Side::Low;
-      const std::size_t n = only.runs.size();
-      std::size_t best_end = n;  // the run after the longest stretch
-      double best = -1;
-      for (std::size_t end = 0; end < n; ++end) {
-        if (only.runs[end].level) continue;
-        const std::size_t next = (end + 1) % n;
-        if (!only.runs[next].level) continue;  // not the stretch's last run
-        double length = 0;
-        for (std::size_t k = end; !only.runs[k].level; k = (k + n - 1) % n) {
-          length += only.runs[k].length;
-        }
-        if (length > best) {
-          best = length;
-          best_end = next;
-        }
-      }
-      // The stretch ends the chain.
-      std::rotate(only.runs.begin(), only.runs.begin() + static_cast<std::ptrdiff_t>(best_end),
-                  only.runs.end());
-      Chain rest;
-      rest.side = other;
-      while (!only.runs.back().level) {
-        rest.runs.insert(rest.runs.begin(), std::move(only.runs.back()));
-        only.runs.pop_back();
-      }
-      loop.push_back(std::move(rest));
-      lows = highs = 1;
-    }
-    if (lows >= 2 && lows == highs && split_folds(where, loop)) return;
-    if (lows != 1 || highs != 1) {
-      std::string pattern;
-      for (const Chain& c : loop) {
-        const double len = chain_length(c);
-        pattern += std::string(" ") +
-                   (c.side == Side::Low    ? "L"
-                    : c.side == Side::High ? "H"
-                                           : "S") +
-                   std::to_string(static_cast<int>(len * 10) / 10.0).substr(0, 4);
-      }
-      problems.push_back(where + pattern + ": " + std::to_string(lows) + " bottom and " +
-                         std::to_string(highs) +
-                         " top chains (expected one each); the row time folds here");
-      return;
-    }
-    while (loop.front().side != Side::Low) std::rotate(loop.begin(), loop.begin() + 1, loop.end());
-    const Chain* right_wale = nullptr;
-    const Chain* left_wale = nullptr;
-    const Chain* high = nullptr;
-    for (std::size_t i = 1; i < loop.size(); ++i) {
-      if (loop[i].side == Side::High) {
-        high = &loop[i];
-      } else if (high == nullptr) {
-        right_wale = &loop[i];
-      } else {
-        left_wale = &loop[i];
-      }
-    }
-    // Segment counts: the zip needs, after the end triangles of shared ends,
-    // either nothing left or one chain at most twice the other (§6.3).
-    const int shared = (left_wale == nullptr ? 1 : 0) + (right_wale == nullptr ? 1 : 0);
-    std::vector<int> low_counts = run_counts(loop.front());
-    std::vector<int> high_counts = run_counts(*high);
-    const std::vector<bool> low_fixed = fixed_runs(loop.front());
-    const std::vector<bool> high_fixed = fixed_runs(*high);
-    int high_min = 0;
-    for (const Run& run : high->runs) high_min += minimum(run);
-    for (int attempt = 0; attempt < 2; ++attempt) {
-      const int a = std::accumulate(low_counts.begin(), low_counts.end(), 0);
-      const int b = std::accumulate(high_counts.begin(), high_counts.end(), 0);
-      if (shared == 2 && a == 1 && b == 1) break;  // a lens
-      const int na = a - shared;
-      int lo = 0;
-      int hi = 0;
-      if (shared == 2 && a == 1) {
-        lo = hi = 1;  // a lens: the edges below and above are glued
-      } else if (na <= 0) {
-        lo = hi = shared;  // only end triangles
-      } else {
-        lo = (na + 1) / 2 + shared;
-        hi = 2 * na + shared;
-      }
-      lo = std::max(lo, high_min);
-      if (lo <= hi) {
-        rescale(*high, high_fixed, high_counts, std::clamp(b, lo, hi));
-        break;
-      }
-      // The top chain cannot shrink enough: lengthen the bottom one.
-      rescale(loop.front(), low_fixed, low_counts,
-              std::max(1, shared + (std::max(0, high_min - shared) + 1) / 2));
-    }
-    if (!zippable(std::accumulate(low_counts.begin(), low_counts.end(), 0),
-                  std::accumulate(high_counts.begin(), high_counts.end(), 0), left_wale == nullptr,
-                  right_wale == nullptr, *high, high_counts) &&
-        boundary_end_to_side(loop)) {
-      // A top chain of bind-off boundary around a short fixed bottom (the
-      // boundary runs almost along the rows): more stitches above than the
-      // row below can feed even by increasing every stitch. The bind-off
-      // stretch at the top chain's end becomes the row's wale side instead,
-      // and the strip is zipped again.
-      ++stats.boundary_sides;
-      strip(where, std::move(loop));
-      return;
-    }
-    // Still too many stitches above a fixed bottom: split a bottom side whose
-    // stitch below is a knit stitch (it becomes an increase), and fit the
-    // counts again.
-    if (!zippable(std::accumulate(low_counts.begin(), low_counts.end(), 0),
-                  std::accumulate(high_counts.begin(), high_counts.end(), 0), left_wale == nullptr,
-                  right_wale == nullptr, *high, high_counts) &&
-        split_side_below(loop.front())) {
-      strip(where, std::move(loop));
-      return;
-    }
-    std::vector<std::int32_t> low_arcs;
-    std::vector<std::int32_t> high_arcs;
-    const std::vector<int> l = chain_vertices(loop.front(), low_counts, low_arcs);
-    const bool left_shared = left_wale == nullptr;
-    const bool right_shared = right_wale == nullptr;
-    const int a = static_cast<int>(l.size()) - 1;
-    const int b = std::accumulate(high_counts.begin(), high_counts.end(), 0);
-    const auto [left_triangle, right_triangle] = end_triangles(a, b, left_shared, right_shared);
-    std::vector<bool> high_on_level;
-    std::vector<int> h = chain_vertices(*high, high_counts, high_arcs, &high_on_level);
-    // Top chain left to right: t[j] = h[b - j]; top segment j is high segment b - 1 - j.
-    std::vector<int> t(h.rbegin(), h.rend());
-    auto top_arc = [&](int j) { return high_arcs[at(b - 1 - j)]; };
-    if (left_shared != (t.front() == l.front()) || right_shared != (t.back() == l.back())) {
-      throw std::logic_error("stitch meshing: chain ends disagree with the strip's sides");
-    }
-    if (left_shared && right_shared && a == 1 && b == 2 && high_on_level[0] != high_on_level[1]) {
-      // One fixed bottom side, a top of a level-curve segment and a boundary
-      // segment: the boundary segment is the wale side of a short-row triangle.
-      const EdgeRole first = high_on_level[0] ? EdgeRole::CourseOut : EdgeRole::Wale;
-      const EdgeRole second = high_on_level[1] ? EdgeRole::CourseOut : EdgeRole::Wale;
-      add_face({l[0], l[1], t[1]}, {EdgeRole::CourseIn, first, second},
-               {low_arcs[0], top_arc(1), top_arc(0)});
-      return;
-    }
-    if (left_shared && right_shared && a == 1 && b == 1) {
-      ++stats.lenses_skipped;  // one edge below, one above, same ends: they are glued
-      return;
-    }
-    using R = EdgeRole;
-    int i0 = 0;
-    int j0 = 0;
-    int i1 = a;
-    int j1 = b;
-    std::int32_t left_arc = left_wale != nullptr ? wale_arc(*left_wale) : kNoArc;
-    std::int32_t right_arc = right_wale != nullptr ? wale_arc(*right_wale) : kNoArc;
-    if (left_triangle) {
-      // §6.3 short row ending on the left: the strip narrows to a point.
-      add_face({l[0], l[1], t[1]}, {R::CourseIn, R::Wale, R::CourseOut},
-               {low_arcs[0], kNoArc, top_arc(0)});
-      i0 = 1;
-      j0 = 1;
-      left_arc = kNoArc;
-    }
-    if (right_triangle) {
-      add_face({l[at(a - 1)], l[at(a)], t[at(b - 1)]}, {R::CourseIn, R::CourseOut, R::Wale},
-               {low_arcs[at(a - 1)], top_arc(b - 1), kNoArc});
-      i1 = a - 1;
-      j1 = b - 1;
-      right_arc = kNoArc;
-    }
-    const int na = i1 - i0;
-    const int nb = j1 - j0;
-    if (na == 0 && nb == 0) return;
-    if (na <= 0 || nb <= 0) {
-      // Nothing valid fits: one face with all that is left, reported by check.
-      std::vector<int> v;
-      std::vector<R> roles;
-      std::vector<std::int32_t> arcs;
-      for (int i = i0; i < i1; ++i) {
-        v.push_back(l[at(i)]);
-        roles.push_back(R::CourseIn);
-        arcs.push_back(low_arcs[at(i)]);
-      }
-      if (l[at(i1)] != t[at(j1)]) {
-        v.push_back(l[at(i1)]);
-        roles.push_back(R::Wale);
-        arcs.push_back(right_arc);
-      }
-      for (int j = j1; j > j0; --j) {
-        v.push_back(t[at(j)]);
-        roles.push_back(R::CourseOut);
-        arcs.push_back(top_arc(j - 1));
-      }
-      if (t[at(j0)] != l[at(i0)]) {
-        v.push_back(t[at(j0)]);
-        roles.push_back(R::Wale);
-        arcs.push_back(left_arc);
-      }
-      add_face(std::move(v), std::move(roles), std::move(arcs));
-      return;
-    }
-    // Zip (§6.3): faces with one or two sides on each chain (knit, decrease,
-    // increase), chosen by dynamic programming so wale sides are as close to
-    // wale_mm as possible and pentagons are used only where rows change length.
-    const std::vector<std::pair<int, int>> steps =
-        zip_steps(l, t, i0, j0, i1, j1, left_wale != nullptr && !left_wale->runs.empty(),
-                  right_wale != nullptr && !right_wale->runs.empty());
-    int i = i0;
-    int j = j0;
-    for (std::size_t f = 0; f < steps.size(); ++f) {
-      const int cb = steps[f].first;
-      const int ct = steps[f].second;
-      std::vector<int> v;
-      std::vector<R> roles;
-      std::vector<std::int32_t> arcs;
-      for (int k = 0; k < cb; ++k) {
-        v.push_back(l[at(i + k)]);
-        roles.push_back(R::CourseIn);
-        arcs.push_back(low_arcs[at(i + k)]);
-      }
-      v.push_back(l[at(i + cb)]);
-      roles.push_back(R::Wale);
-      arcs.push_back(f + 1 == steps.size() ? right_arc : kNoArc);
-      for (int k = ct; k > 0; --k) {
-        v.push_back(t[at(j + k)]);
-        roles.push_back(R::CourseOut);
-        arcs.push_back(top_arc(j + k - 1));
-      }
-      v.push_back(t[at(j)]);
-      roles.push_back(R::Wale);
-      arcs.push_back(f == 0 ? left_arc : kNoArc);
-      add_face(std::move(v), std::move(roles), std::move(arcs));
-      i += cb;
-      j += ct;
-    }
-  }
+// The rows: how many, the slices between their levels and the strips.
+struct Rows {
+  int bands = 1;
+  BandSlices slices;
+  Strips strips;
 };
 
-Vec3 polygon_normal(const StitchMesh& mesh, const StitchFace& face) {
-  Vec3 normal = Vec3::Zero();
-  const std::size_t n = face.vertices.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    normal += mesh.positions[face.vertices[i]].cross(mesh.positions[face.vertices[(i + 1) % n]]);
-  }
-  return normal;
+// Rows placed on t by height, with the saddles among `candidates` (per disc
+// vertex; empty for none) held on a level, sliced and grouped into strips.
+// Sets stats.saddles_pinned.
+Rows make_rows(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+               const Eigen::VectorXd& t, const StitchMeshParams& params,
+               const std::vector<bool>& candidates, StitchMeshStats& stats) {
+  Rows rows;
+  Eigen::VectorXd levels = row_levels(disc, tris, t, params, rows.bands);
+  const std::vector<int> pin =
+      pin_saddles(disc, tris, levels, rows.bands, 0.4 * params.saddle_wales * params.wale_mm,
+                  params.saddle_wales * params.wale_mm, candidates, stats.saddles_pinned);
+  rows.slices = slice(disc, tris, levels, 1.0, rows.bands, pin);
+  rows.strips = find_strips(rows.slices);
+  return rows;
 }
 
-// Step 5, relaxing (docs/stitch-mesh.md): the stitch vertices inside the
-// sheet move over the cut mesh so that the sides come closer to their
-// target lengths, course or wale; the boundary's vertices stay. Each sweep
-// moves each inner vertex to where its sides, as springs of their target
-// lengths, would hold it (each weighted by 1 / target^2, and less the
-// farther it is off, so a fan's chord across a hole does not drag the
-// sheet), then onto the nearest point of the surface. A move that turns an
-// incident face over is not made. The faces and their types do not change.
-// Returns the number of sweeps made.
-int relax_positions(StitchMesh& mesh, const LabelledDisc& disc, int sweeps) {
-  if (sweeps <= 0) return 0;
-  const cloth::TriangleMeshQuery surface = disc_surface(disc);
-  struct Spring {
-    std::uint32_t other;
-    double target;
-  };
-  const std::size_t count = mesh.positions.size();
-  std::vector<std::vector<Spring>> springs(count);
-  std::vector<std::vector<std::size_t>> faces_of(count);
-  std::map<std::pair<std::uint32_t, std::uint32_t>, EdgeRole> sides;
-  std::set<std::pair<std::uint32_t, std::uint32_t>> directed;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const StitchFace& face = mesh.faces[f];
-    const std::size_t n = face.vertices.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t a = face.vertices[i];
-      const std::uint32_t b = face.vertices[(i + 1) % n];
-      faces_of[a].push_back(f);
-      directed.insert({a, b});
-      sides.emplace(std::make_pair(std::min(a, b), std::max(a, b)), face.roles[i]);
+// The disc vertices of strips with two bottom and two top chains, or whose
+// bottom and top differ in length by more than kLopsidedRatio: the saddles
+// among them are to be held on a level. Empty when there are none.
+std::vector<bool> saddle_candidates(const LabelledDisc& disc, const std::vector<Triangle>& tris,
+                                    const Rows& rows, const StitchMeshParams& params) {
+  const BandSlices& slices = rows.slices;
+  std::set<int> roots;
+  ChainMaker probe(slices, tris, params);
+  for (const auto& [root, strip_loops] : rows.strips.loops) {
+    if (strip_loops.size() != 1) continue;
+    int lows = 0;
+    int highs = 0;
+    double bottom = 0;
+    double top = 0;
+    for (const Chain& c : probe.chains(strip_loops.front(), slices.band[at(root)])) {
+      lows += c.side == Side::Low ? 1 : 0;
+      highs += c.side == Side::High ? 1 : 0;
+      if (c.side != Side::Wale) (c.side == Side::Low ? bottom : top) += chain_length(c);
     }
+    const bool x_shaped = lows >= 2 && lows == highs;
+    const bool lopsided = bottom > 0 && top > 0 &&
+                          std::abs(std::log(bottom / top)) > std::log(kLopsidedRatio) &&
+                          std::max(bottom, top) >= kLopsidedWales * params.wale_mm;
+    if (x_shaped || lopsided) roots.insert(root);
   }
-  std::vector<bool> fixed(count, false);
-  for (const auto& [a, b] : directed) {
-    if (directed.count({b, a}) == 0) fixed[a] = fixed[b] = true;
+  if (roots.empty()) return {};
+  std::vector<bool> candidates(disc.positions.size(), false);
+  for (std::size_t p = 0; p < at(slices.num_slices()); ++p) {
+    if (roots.count(rows.strips.root[p]) == 0) continue;
+    for (int v : tris[at(slices.tri[p])].v) candidates[at(v)] = true;
   }
-  for (const auto& [side, role] : sides) {
-    const double target = role == EdgeRole::Wale ? mesh.wale_mm : mesh.course_mm;
-    springs[side.first].push_back({side.second, target});
-    springs[side.second].push_back({side.first, target});
-  }
-  std::vector<Vec3> normals;
-  for (const StitchFace& face : mesh.faces) normals.push_back(polygon_normal(mesh, face));
-  // A vertex is visited again only while it or a neighbour still moves.
-  const double still = 1e-4 * mesh.course_mm;
-  std::vector<bool> active(count, true);
-  std::vector<bool> moved(count, false);
-  int sweep = 0;
-  while (sweep < sweeps) {
-    ++sweep;
-    std::fill(moved.begin(), moved.end(), false);
-    for (std::size_t v = 0; v < count; ++v) {
-      if (fixed[v] || springs[v].empty() || !active[v]) continue;
-      const Vec3 x = mesh.positions[v];
-      Vec3 sum = Vec3::Zero();
-      double weights = 0;
-      for (const Spring& s : springs[v]) {
-        const Vec3 d = x - mesh.positions[s.other];
-        const double length = d.norm();
-        if (!(length > 0)) continue;
-        const double off = (length - s.target) / (0.5 * s.target);
-        const double w = 1.0 / (s.target * s.target * (1 + off * off));
-        sum += w * (mesh.positions[s.other] + s.target / length * d);
-        weights += w;
-      }
-      if (!(weights > 0)) continue;
-      mesh.positions[v] = surface.closest_point(sum / weights);
-      for (std::size_t f : faces_of[v]) {
-        if (polygon_normal(mesh, mesh.faces[f]).dot(normals[f]) <= 0) {
-          mesh.positions[v] = x;
-          break;
-        }
-      }
-      moved[v] = (mesh.positions[v] - x).norm() > still;
-    }
-    bool any = false;
-    for (std::size_t v = 0; v < count; ++v) {
-      active[v] = moved[v];
-      for (const Spring& s : springs[v]) active[v] = active[v] || moved[s.other];
-      any = any || active[v];
-    }
-    if (!any) break;
-  }
-  return sweep;
+  return candidates;
 }
 
+// Row ends: the boundary points 0.9 wale (`tip_side_wales`) from where a
+// row's chains meet become slice vertices, so those rows can end in a wale
+// side there.
+void add_row_end_points(const std::vector<Triangle>& tris, const StitchMeshParams& params,
+                        Rows& rows) {
+  std::vector<HalfedgeSplit> splits;
+  {
+    ChainMaker probe(rows.slices, tris, params);
+    for (const auto& [root, strip_loops] : rows.strips.loops) {
+      if (strip_loops.size() == 1) probe.chains(strip_loops.front(), rows.slices.band[at(root)]);
+    }
+    splits = probe.tip_splits();
+  }
+  if (!splits.empty()) {
+    rows.slices = split_halfedges(rows.slices, std::move(splits));
+    rows.strips = find_strips(rows.slices);
+  }
+}
+
+// Steps 3-4: the chains of every strip, then its stitch vertices and faces,
+// strip by strip from the bottom row up. Sets the mesh, the problems and the
+// stitch-making figures of `result`.
+void mesh_strips(const LabelledDisc& disc, const std::vector<Triangle>& tris, const Rows& rows,
+                 const StitchMeshParams& params, StitchMeshResult& result) {
+  const BandSlices& slices = rows.slices;
+  StripMesher builder(disc, params, slices);
+  ChainMaker chain_maker(slices, tris, params);
+  // Strips in row order, so level curves are sampled from below first.
+  std::vector<std::pair<int, int>> order;
+  for (const auto& [root, strip_loops] : rows.strips.loops) {
+    order.push_back({slices.band[at(root)], root});
+  }
+  std::sort(order.begin(), order.end());
+  // Each strip's chains, made once (empty for a strip with a hole).
+  std::vector<std::vector<Chain>> strip_chains(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto& [band, root] = order[i];
+    const std::vector<std::vector<int>>& strip_loops = rows.strips.loops.at(root);
+    if (strip_loops.size() == 1) strip_chains[i] = chain_maker.chains(strip_loops.front(), band);
+  }
+  for (auto it = strip_chains.rbegin(); it != strip_chains.rend(); ++it) builder.plan_minimums(*it);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto& [band, root] = order[i];
+    const std::vector<std::vector<int>>& strip_loops = rows.strips.loops.at(root);
+    const std::string where =
+        "row " + std::to_string(band) + " strip at slice " + std::to_string(root);
+    if (strip_loops.size() != 1) {
+      builder.add_problem(where + ": " + std::to_string(strip_loops.size()) +
+                          " boundary loops (a strip with a hole: the row time has an "
+                          "interior extremum)");
+      continue;
+    }
+    builder.strip(where, std::move(strip_chains[i]));
+  }
+  result.stats.rows = rows.bands;
+  result.stats.strips = static_cast<int>(order.size());
+  result.stats.lenses_skipped = builder.stats().lenses_skipped;
+  result.stats.saddles_split = builder.stats().saddles_split;
+  result.stats.invalid_faces = builder.stats().invalid_faces;
+  result.stats.boundary_sides = builder.stats().boundary_sides;
+  result.stats.sides_split_below = builder.stats().sides_split_below;
+  result.stats.tip_sides = chain_maker.tip_sides();
+  result.mesh = std::move(builder.mesh());
+  result.problems = std::move(builder.problems());
+}
+
+}  // namespace
 }  // namespace stitch_meshing
 
 std::vector<std::string> check_disc(const LabelledDisc& disc) {
@@ -1271,122 +219,29 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   std::vector<Triangle> tris = triangulate(disc);
   Eigen::VectorXd t = row_time(disc, tris, params, result.stats);
   result.stats.solve_seconds = seconds_since(start);
-  int bands = 1;
-  BandSlices slices;
-  Strips strips;
   // Rows, slices and strips from t. A strip with a hole (an interior
   // extremum of t) makes the row time be levelled and the rows be placed
   // again; a row time without one is used as fitted.
-  auto make_strips = [&](const std::vector<bool>& candidates) {
-    Eigen::VectorXd rows = row_levels(disc, tris, t, params, bands);
-    const std::vector<int> pin =
-        pin_saddles(disc, tris, rows, bands, 0.4 * params.saddle_wales * params.wale_mm,
-                    params.saddle_wales * params.wale_mm, candidates, result.stats.saddles_pinned);
-    slices = slice(disc, tris, rows, 1.0, bands, pin);
-    strips = find_strips(slices);
-  };
-  make_strips({});
-  if (strips.has_hole()) {
+  Rows rows = make_rows(disc, tris, t, params, {}, result.stats);
+  if (rows.strips.has_hole()) {
     result.stats.row_time_levelled = level_interior_extrema(disc, tris, t);
-    make_strips({});
+    rows = make_rows(disc, tris, t, params, {}, result.stats);
   }
-  // Saddles on a level: those among the vertices of strips with two bottom
-  // and two top chains, or whose bottom and top differ in length by more
-  // than kLopsidedRatio, are held on a level and the rows are made again.
+  // Saddles on a level: held, and the rows made again.
   if (params.saddle_wales > 0) {
-    std::set<int> roots;
-    ChainMaker probe(slices, tris, params);
-    for (const auto& [root, strip_loops] : strips.loops) {
-      if (strip_loops.size() != 1) continue;
-      int lows = 0;
-      int highs = 0;
-      double bottom = 0;
-      double top = 0;
-      for (const Chain& c : probe.chains(strip_loops.front(), slices.band[at(root)])) {
-        lows += c.side == Side::Low ? 1 : 0;
-        highs += c.side == Side::High ? 1 : 0;
-        if (c.side != Side::Wale) (c.side == Side::Low ? bottom : top) += chain_length(c);
-      }
-      const bool x_shaped = lows >= 2 && lows == highs;
-      const bool lopsided = bottom > 0 && top > 0 &&
-                            std::abs(std::log(bottom / top)) > std::log(kLopsidedRatio) &&
-                            std::max(bottom, top) >= kLopsidedWales * params.wale_mm;
-      if (x_shaped || lopsided) roots.insert(root);
-    }
-    if (!roots.empty()) {
-      std::vector<bool> candidates(disc.positions.size(), false);
-      for (std::size_t p = 0; p < at(slices.num_slices()); ++p) {
-        if (roots.count(strips.root[p]) == 0) continue;
-        for (int v : tris[at(slices.tri[p])].v) candidates[at(v)] = true;
-      }
-      make_strips(candidates);
+    const std::vector<bool> candidates = saddle_candidates(disc, tris, rows, params);
+    if (!candidates.empty()) {
+      rows = make_rows(disc, tris, t, params, candidates, result.stats);
       // Held saddles make no extremum, so no strip with a hole; should one
       // appear all the same, the rows are made as before.
-      if (strips.has_hole()) make_strips({});
+      if (rows.strips.has_hole()) rows = make_rows(disc, tris, t, params, {}, result.stats);
     }
   }
-  // Row ends: the boundary points 0.9 wale (`tip_side_wales`) from where a row's chains meet
-  // become slice vertices, so those rows can end in a wale side there.
-  if (params.tip_side_wales > 0) {
-    std::vector<HalfedgeSplit> splits;
-    {
-      ChainMaker probe(slices, tris, params);
-      for (const auto& [root, strip_loops] : strips.loops) {
-        if (strip_loops.size() == 1) probe.chains(strip_loops.front(), slices.band[at(root)]);
-      }
-      splits = probe.tip_splits();
-    }
-    if (!splits.empty()) {
-      slices = split_halfedges(slices, std::move(splits));
-      strips = find_strips(slices);
-    }
-  }
-  Builder builder{disc, params, slices, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
-  ChainMaker chain_maker(slices, tris, params);
-  builder.mesh.course_mm = params.course_mm;
-  builder.mesh.wale_mm = params.wale_mm;
-  // Strips in row order, so level curves are sampled from below first.
-  std::vector<std::pair<int, int>> order;
-  for (const auto& [root, strip_loops] : strips.loops)
-    order.push_back({slices.band[at(root)], root});
-  std::sort(order.begin(), order.end());
-  // Each strip's chains, made once (empty for a strip with a hole).
-  std::vector<std::vector<Chain>> strip_chains(order.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const auto& [band, root] = order[i];
-    const std::vector<std::vector<int>>& strip_loops = strips.loops[root];
-    if (strip_loops.size() == 1) {
-      strip_chains[i] = chain_maker.chains(strip_loops.front(), band);
-    }
-  }
-  for (auto it = strip_chains.rbegin(); it != strip_chains.rend(); ++it) builder.plan_minimums(*it);
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const auto& [band, root] = order[i];
-    const std::vector<std::vector<int>>& strip_loops = strips.loops[root];
-    ++builder.stats.strips;
-    const std::string where =
-        "row " + std::to_string(band) + " strip at slice " + std::to_string(root);
-    if (strip_loops.size() != 1) {
-      builder.problems.push_back(where + ": " + std::to_string(strip_loops.size()) +
-                                 " boundary loops (a strip with a hole: the row time has an "
-                                 "interior extremum)");
-      continue;
-    }
-    builder.strip(where, std::move(strip_chains[i]));
-  }
-  result.stats.rows = bands;
-  result.stats.strips = builder.stats.strips;
-  result.stats.lenses_skipped = builder.stats.lenses_skipped;
-  result.stats.saddles_split = builder.stats.saddles_split;
-  result.stats.invalid_faces = builder.stats.invalid_faces;
-  result.stats.boundary_sides = builder.stats.boundary_sides;
-  result.stats.sides_split_below = builder.stats.sides_split_below;
-  result.stats.tip_sides = chain_maker.tip_sides();
-  result.mesh = std::move(builder.mesh);
+  if (params.tip_side_wales > 0) add_row_end_points(tris, params, rows);
+  mesh_strips(disc, tris, rows, params, result);
   const auto relax_start = std::chrono::steady_clock::now();
   result.stats.relax_sweeps = relax_positions(result.mesh, disc, params.relax_sweeps);
   result.stats.relax_seconds = seconds_since(relax_start);
-  result.problems = std::move(builder.problems);
   for (std::string& line : check(result.mesh)) result.problems.push_back(std::move(line));
   result.stats.total_seconds = seconds_since(start);
   return result;

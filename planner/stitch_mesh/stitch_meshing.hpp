@@ -1,6 +1,18 @@
 // Internals of the stitch mesher (stitch_mesher.hpp has the method and the
-// public interface): what its steps share. Only planner/stitch_mesh/ includes
-// this header.
+// public interface): the types and functions its steps share, in namespace
+// planner::stitch_meshing. Only planner/stitch_mesh/ includes this header.
+//
+//   geometry.cpp                  helpers: face normals, the disc as a surface, length cost
+//   row_time.cpp                  step 1: triangles, the row time t; step 2: rows by height
+//   row_time_critical_points.cpp  step 2: interior extrema levelled, saddles held on a level
+//   band_slices.cpp               step 2: triangles cut along the levels, strips
+//   chains.cpp                    step 3: a strip's boundary as bottom, top and wale chains
+//   row_sampling.cpp              step 3: stitch vertices along the chains, segment counts
+//   strips.cpp                    step 4: each strip brought to one bottom and one top chain
+//   zip.cpp                       step 4: the faces between the two chains
+//   relax.cpp                     step 5: inner stitch vertices relaxed over the surface
+//   stitch_mesher.cpp             the input check and the steps in order
+//   stitch_mesh_figures.cpp       figures of a finished stitch mesh
 #pragma once
 
 #include <Eigen/Core>
@@ -9,6 +21,10 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include "planner/common/index.hpp"
@@ -271,5 +287,202 @@ class ChainMaker {
   int tip_sides_ = 0;
   std::vector<HalfedgeSplit> tip_splits_;
 };
+
+// ---------------------------------------------------------------------------
+// Steps 3-4, stitch vertices and faces (row_sampling.cpp, zip.cpp, strips.cpp).
+
+// Which ends of a strip of a bottom and b top sides, the chains sharing
+// their left and/or right end, get a short-row triangle (§6.3).
+std::pair<bool, bool> end_triangles(int a, int b, bool left_shared, bool right_shared);
+
+// A strip's two chains as stitch vertices, both left to right, and the part
+// of them still to zip: bottom[i0 .. i1] and top[j0 .. j1], between wale
+// sides with the cut-arcs left_arc and right_arc.
+struct ZipSpan {
+  std::vector<int> bottom;
+  std::vector<int> top;
+  std::vector<std::int32_t> bottom_arcs;  // per bottom segment
+  std::vector<std::int32_t> high_arcs;  // per top segment, in the top chain's (right to left) order
+  int top_segments = 0;
+  int i0 = 0;
+  int j0 = 0;
+  int i1 = 0;
+  int j1 = 0;
+  std::int32_t left_arc = kNoArc;
+  std::int32_t right_arc = kNoArc;
+  // The cut-arc of top segment j (left to right).
+  std::int32_t top_arc(int j) const { return high_arcs[at(top_segments - 1 - j)]; }
+};
+
+// Makes the stitch mesh strip by strip (§6.2-6.3): stitch vertices along
+// each strip's chains and the faces between them. Strips are given bottom
+// row first, so each level curve is sampled by the strip below it and the
+// strip above reuses its stitch vertices.
+class StripMesher {
+ public:
+  StripMesher(const LabelledDisc& disc, const StitchMeshParams& params, const BandSlices& slices);
+
+  // Before any strip is zipped: a strip whose bottom is one level curve and
+  // whose top needs more sides (one for each run, or the run's own minimum)
+  // than twice that curve's sides can feed asks the strip below to sample the
+  // curve more finely. Called from the top row down, so a minimum passes
+  // down through as many rows as need it.
+  void plan_minimums(const std::vector<Chain>& loop);
+
+  // Adds the faces of the strip with these chains (in loop order). `where`
+  // names the strip in problems: chains the strip cannot be zipped from.
+  void strip(const std::string& where, std::vector<Chain> loop);
+
+  void add_problem(std::string problem) { problems_.push_back(std::move(problem)); }
+
+  // Of the strips so far: lenses_skipped, saddles_split, invalid_faces,
+  // boundary_sides and sides_split_below (the other figures are 0).
+  const StitchMeshStats& stats() const { return stats_; }
+  StitchMesh& mesh() { return mesh_; }
+  std::vector<std::string>& problems() { return problems_; }
+
+ private:
+  // Row sampling (row_sampling.cpp).
+  int stitch_vertex(int slice_vertex);
+  std::int32_t arc_of(int h) const;
+  // A boundary run's length in straight steps of course_mm: a jagged cut
+  // boundary is longer along its edges than across the stitches it holds
+  // (docs/stitch-mesh.md, step 3).
+  double straight_length(const Run& run) const;
+  // Segments of a run `length` long: one per ~course_mm.
+  int auto_count(double length) const;
+  // Arc length at the end of each half-edge of a polyline (0 first).
+  std::vector<double> lengths_along(const std::vector<int>& halfedges) const;
+  // The point of a polyline at arc length t.
+  Vec3 point_along(const std::vector<int>& halfedges, const std::vector<double>& along,
+                   double t) const;
+  // Arc lengths of the points of a walk along a polyline that steps `step`
+  // in a straight line each time from its start.
+  std::vector<double> straight_walk(const std::vector<int>& halfedges,
+                                    const std::vector<double>& along, double step) const;
+  // Arc lengths of the n - 1 inner points of a boundary run cut into n
+  // straight sides as close to course_mm as can be: fewest sides off by more
+  // than 15%, then the least squared relative deviation (dynamic programming
+  // over points every course_mm / 16 along the run). A jagged or folded cut
+  // boundary is longer along its edges than across the stitches it holds:
+  // the sides are its chords (docs/stitch-mesh.md, step 3).
+  std::vector<double> straight_sides(const std::vector<int>& halfedges,
+                                     const std::vector<double>& along, int n) const;
+  // Stitch vertices along a run, n segments (arcs[i] for segment i): evenly
+  // along it, or with `straight` (a boundary run) in n straight sides as
+  // close to course_mm as can be (straight_sides), so the stitches along a
+  // jagged boundary are as wide as the others.
+  std::vector<int> sample(const std::vector<int>& halfedges, std::vector<std::int32_t>* arcs, int n,
+                          bool straight = false);
+  std::uint64_t undirected(int h) const;
+  // A level curve is sampled once (by the strip below it, with n segments);
+  // the strip above reuses the samples.
+  const std::vector<int>* sampled_curve(const Run& run) const;
+  std::vector<int> level_samples(const Run& run, int n);
+  // Fewest segments a run may have: one, or for a level curve what the strip
+  // above it needs (plan_minimums).
+  int minimum(const Run& run) const;
+  // Segments per run of a chain: fixed for level curves sampled already,
+  // else ~length / course_mm.
+  std::vector<int> run_counts(const Chain& chain) const;
+  // Changes the free runs' counts (not fixed ones) so they sum to `total`
+  // where possible, in proportion to their length; each keeps its minimum.
+  void rescale(const Chain& chain, const std::vector<bool>& fixed, std::vector<int>& counts,
+               int total) const;
+  std::vector<bool> fixed_runs(const Chain& chain) const;
+  // Vertices of a course chain and the arcs of its segments.
+  std::vector<int> chain_vertices(const Chain& chain, const std::vector<int>& counts,
+                                  std::vector<std::int32_t>& arcs,
+                                  std::vector<bool>* on_level = nullptr);
+
+  // Zipping (zip.cpp).
+  void add_face(std::vector<int> vertices, std::vector<EdgeRole> roles,
+                std::vector<std::int32_t> arcs);
+  std::int32_t wale_arc(const Chain& chain) const;
+  // Sides taken from the bottom and top chain by each face between the wale
+  // sides (l[i0], t[j0]) and (l[i1], t[j1]). Each step is (1, 1), (2, 1) or
+  // (1, 2) when the chains allow it (neither more than twice the other);
+  // otherwise the counts are spread evenly and the faces come out invalid.
+  std::vector<std::pair<int, int>> zip_steps(const std::vector<int>& l, const std::vector<int>& t,
+                                             int i0, int j0, int i1, int j1, bool left_boundary,
+                                             bool right_boundary) const;
+  // The faces of a strip of one bottom and one top chain with these segment
+  // counts, between the wale chains (nullptr where the chains share an end):
+  // short-row triangles at shared ends, then the zip.
+  void zip_strip(const Chain& low, const Chain& high, const Chain* left_wale,
+                 const Chain* right_wale, const std::vector<int>& low_counts,
+                 const std::vector<int>& high_counts);
+  // Nothing valid fits: one face with all that is left, reported by check.
+  void add_leftover_face(const ZipSpan& z);
+  // Zip (§6.3): faces with one or two sides on each chain (knit, decrease,
+  // increase), chosen by dynamic programming so wale sides are as close to
+  // wale_mm as possible and pentagons are used only where rows change length.
+  void add_zipped_faces(const ZipSpan& z, bool left_boundary, bool right_boundary);
+
+  // Strips (strips.cpp).
+  // Brings the loop to one bottom and one top chain where it can; otherwise
+  // splits it round saddles (split_folds) or reports it, and returns false.
+  bool one_bottom_and_top(const std::string& where, std::vector<Chain>& loop);
+  // Segment counts: the zip needs, after the end triangles of `shared`
+  // ends, either nothing left or one chain at most twice the other (§6.3).
+  void fit_counts(const Chain& low, const Chain& high, int shared, std::vector<int>& low_counts,
+                  std::vector<int>& high_counts) const;
+  // A strip around saddles of the row time (m >= 2 bottom and m top chains,
+  // alternating; X-shaped for one saddle): one wale edge between two corners
+  // two course chains apart (a corner is where a bottom and a top chain
+  // meet) cuts off a simple strip of the two chains between them, and leaves
+  // m - 1 pairs. A side chain at such a corner is first joined to the
+  // bottom chain there (cast-on stitches), so the corner is a point. Of the
+  // 2m possible edges the one of least cost is used; the rest is split again.
+  // The cost is the edge's length plus, for each of the two strips it makes,
+  // kSplitBalance wales per unit of |ln(bottom / top)|: a strip whose bottom
+  // is much longer or shorter than its top is zipped with a run of decreases
+  // or increases whose wale sides fan out across it (docs/stitch-mesh.md,
+  // "Saddle splits"), so the split pairs chains of like length where the
+  // edges differ little.
+  bool split_folds(const std::string& where, std::vector<Chain> loop);
+  // A decrease whose course-out side was split at `middle` (two sides in,
+  // two out) becomes two knit stitches sharing a wale edge.
+  void split_decrease(std::size_t index, int middle);
+  // Splits the longest side of a fixed bottom chain whose face below is a
+  // knit stitch (it becomes an increase, §6.3) or a decrease (it becomes two
+  // knit stitches), or that has no face below (a cast-on side, possibly
+  // under glued lenses: one more stitch is cast on), so the bottom chain has
+  // one more side. False when no side qualifies.
+  bool split_side_below(const Chain& low);
+
+  const LabelledDisc& disc_;
+  const StitchMeshParams& params_;
+  const BandSlices& slices_;
+  StitchMesh mesh_;
+  std::unordered_map<int, int> anchor_;  // slice vertex -> stitch vertex
+  // Level curve (by any of its undirected slice edges) -> its stitch vertices
+  // in the order of the first strip that sampled it, and that order's first slice vertex.
+  std::unordered_map<std::uint64_t, int> curve_of_edge_;
+  std::vector<std::vector<int>> curve_samples_;
+  std::vector<int> curve_first_;
+  std::vector<std::string> problems_;
+  StitchMeshStats stats_;
+  // Bottom sides (as the row above walks them) of increases and decreases.
+  std::unordered_set<std::uint64_t> shaped_below_;
+  // Course-out sides (as the row above walks them) -> the face below.
+  std::unordered_map<std::uint64_t, std::size_t> face_below_;
+  // Level curve (by any of its undirected slice edges) -> fewest segments.
+  std::unordered_map<std::uint64_t, int> min_segments_;
+};
+
+// ---------------------------------------------------------------------------
+// Step 5 (relax.cpp).
+
+// Step 5, relaxing (docs/stitch-mesh.md): the stitch vertices inside the
+// sheet move over the cut mesh so that the sides come closer to their
+// target lengths, course or wale; the boundary's vertices stay. Each sweep
+// moves each inner vertex to where its sides, as springs of their target
+// lengths, would hold it (each weighted by 1 / target^2, and less the
+// farther it is off, so a fan's chord across a hole does not drag the
+// sheet), then onto the nearest point of the surface. A move that turns an
+// incident face over is not made. The faces and their types do not change.
+// Returns the number of sweeps made.
+int relax_positions(StitchMesh& mesh, const LabelledDisc& disc, int sweeps);
 
 }  // namespace planner::stitch_meshing
