@@ -1,3 +1,6 @@
+// assembly::load (assembly_model.hpp): reading the plan folder, one step per
+// file, then the seams (assembly_seams.hpp).
+
 #include <cstddef>
 #include <cstdint>
 #include <exception>

@@ -18,8 +18,10 @@ namespace {
 // One panel's view of the scene: the turned positions and where they land.
 struct Projection {
   std::vector<Vec3> turned;
-  double ox = 0;  // pixel of turned x = 0 (Fit::ViewBox: of the box's left)
-  double oy = 0;  // pixel of turned y = 0 (Fit::ViewBox: of the box's bottom)
+  // The image pixel of the view's point (min_x, min_y): the centre of the
+  // fitted sphere, or for Fit::ViewBox the lower left of the view's box.
+  double ox = 0;
+  double oy = 0;
   double min_x = 0;
   double min_y = 0;
   double scale = 1;  // pixels per scene unit
@@ -158,6 +160,12 @@ class DepthBuffer {
                   style.width / 2, style.depth_bias * pr.scale);
         }
       }
+    }
+    // The overlay lines over everything.
+    for (const Scene::Segment& seg : scene.overlay) {
+      const LineStyle& style = scene.line_styles[at(seg.style)];
+      segment(q[at(seg.a)], q[at(seg.b)], style.colour, style.width / 2,
+              std::numeric_limits<double>::infinity());
     }
   }
 

@@ -14,10 +14,11 @@
 //   size of each other.
 // - a depth buffer (Options::depth_buffer): every face rasterised pixel by
 //   pixel as a fan of triangles, each shaded by its own normal, then the
-//   marked sides as round dots along them, all depth-tested, without
-//   antialiasing or outlines. Right for a garment worn over its wearer (or
-//   over itself), where painter's order fails; `depth_bias` lifts the garment
-//   and its seams just in front of the wearer.
+//   marked sides as round dots along them, all depth-tested (the overlay
+//   lines over everything), without antialiasing, outlines or dashes. Right
+//   for a garment worn over its wearer (or over itself), where painter's
+//   order fails; `depth_bias` lifts the garment and its seams just in front
+//   of the wearer.
 #pragma once
 
 #include <cairo.h>
