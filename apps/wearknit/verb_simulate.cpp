@@ -132,9 +132,9 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
   bed::Machine machine(*profile, sink, source, reader.carriers(), header_carriers, machine_options);
   machine.check_headers(reader.headers());
   // The carriage passes the DAT backend forms, for machines it writes
-  // (issue: DAT passes in the statistics). Its diagnostics stay apart: the
-  // VM's verdict is this verb's verdict; a program the DAT backend refuses
-  // just has no passes to report.
+  // (`--stats` reports them beside the VM's figures). Its diagnostics stay
+  // apart: the VM's verdict is this verb's verdict; a program the DAT
+  // backend refuses just has no passes to report.
   const dat::Profile* dat_profile = dat::find_profile(profile->name);
   knitout::DiagnosticSink dat_sink;
   std::optional<dat::PassBuilder> pass_builder;

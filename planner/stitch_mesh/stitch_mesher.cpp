@@ -715,17 +715,17 @@ constexpr double kSplitBalance = 2.0;
 // Saddles on a level (pin_saddles) are looked for in X-shaped strips and in
 // strips whose bottom and top chains differ in length by more than this
 // ratio, the longer at least kLopsidedWales wales long. 1.3 to 1.5 and 10
-// to 20 wales gave 37 of the 38 shared meshes meeting every figure of issue
-// 8; without the length, jagged cut boundaries lost stitches' shape
+// to 20 wales gave 37 of the 38 shared meshes meeting every target size;
+// without the length, jagged cut boundaries lost stitches' shape
 // (docs/stitch-mesh.md, "Saddles on a level").
 constexpr double kLopsidedRatio = 1.3;
 constexpr double kLopsidedWales = 20.0;
 
-// Issue 8 counts sides within 15% of their target length. A boundary run's
-// sides are placed so that fewest fall outside (each costs this much more
-// than its squared relative error): with 1, 0.05 (the zip's outside_cost) or
-// points every course / 8, 16 or 32, all 38 shared meshes met every figure
-// (docs/stitch-mesh.md, step 3).
+// A side is counted as the right length within 15% of its target. A boundary
+// run's sides are placed so that fewest fall outside (each costs this much
+// more than its squared relative error): with 1, 0.05 (the zip's
+// outside_cost) or points every course / 8, 16 or 32, all 38 shared meshes
+// met every figure (docs/stitch-mesh.md, step 3).
 constexpr double kLengthTolerance = 0.15;
 constexpr double kBoundaryOutsideCost = 1.0;
 
@@ -1458,8 +1458,8 @@ struct Builder {
     auto wale_cost = [&](int i, int j) {
       const double len =
           (mesh.positions[at(l[at(i0 + i)])] - mesh.positions[at(t[at(j0 + j)])]).norm();
-      // Issue 8 counts wale sides within 15% of the target: one outside
-      // costs a step more than its squared error.
+      // A wale side is counted as the right length within 15% of the target:
+      // one outside costs a step more than its squared error.
       return length_cost((len - params.wale_mm) / params.wale_mm, params.outside_cost);
     };
     // Fig. 7 rules of thumb as costs (docs/stitch-mesh.md): no increase or

@@ -21,7 +21,7 @@ namespace {
 
 namespace sd = stitch_discs;
 
-// Everything issue 8 asks of a stitch mesh made from a disc of known area;
+// The stage's targets for a stitch mesh made from a disc of known area;
 // returns the result for further checks.
 StitchMeshResult expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2,
                                          const StitchMeshParams& params, const std::string& name) {

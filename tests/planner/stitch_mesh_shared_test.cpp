@@ -1,10 +1,10 @@
-// Stitch meshing of the cut meshes of every shared test mesh (issue 8's
-// "done when"): each mesh is scaled to 100 mm along its longest side, cut
-// (§4) and remeshed (§6) at the default gauge with the default options.
-// Every stitch mesh must be valid (only the four face types, one disc with
-// the cut mesh's boundary) and meet issue 8's sizes; the cut meshes that miss
-// a figure are named below with the bound they are held to instead, and
-// docs/stitch-mesh.md says why.
+// Stitch meshing of the cut meshes of every shared test mesh: each mesh is
+// scaled to 100 mm along its longest side, cut (§4) and remeshed (§6) at the
+// default gauge with the default options. Every stitch mesh must be valid
+// (only the four face types, one disc with the cut mesh's boundary) and meet
+// the stage's target sizes; the cut meshes that miss a figure are named
+// below with the bound they are held to instead, and docs/stitch-mesh.md
+// says why.
 //
 // Triangle inputs are remeshed by the cut stage first, which takes 2-30 s
 // per mesh; under the sanitizers (scripts/test.sh's second run) those meshes
@@ -46,7 +46,7 @@ const std::vector<std::string> kMeshes = {
     "split-1-2-open",    "teddy-quad",    "torus-npm",     "torus-qd",
     "torus-quad-coarse", "torus"};
 
-// Issue 8's figures: mean course and wale lengths within 5% of the target,
+// The target sizes: mean course and wale lengths within 5% of the target,
 // 90% of each within 15%, stitches within 10% of area / (course x wale).
 struct Limits {
   double mean = 0.05;         // |mean / target - 1| at most
@@ -81,8 +81,8 @@ LabelledDisc cut_shared(const std::filesystem::path& file) {
   for (Vec3& p : mesh->positions) p *= 100.0 / size.maxCoeff();
   const bool quad_input = is_quad_dominant(*mesh);
   ProxyResult proxy = make_proxy(*mesh, ProxyParams{});
-  // Issue 6: every triangle input is remeshed along its field (no fallback
-  // to pairing triangles).
+  // Every triangle input is remeshed along its field (no fallback to
+  // pairing triangles).
   EXPECT_EQ(proxy.method, quad_input ? "input" : "instant-meshes") << file << proxy.remesh_failure;
   // No two proxy vertices at one point (a pinch split by the remesher is
   // pulled apart): the wearability stage welds the cut mesh's two sides by
@@ -195,8 +195,8 @@ class SharedDiscTest : public ::testing::TestWithParam<std::string> {
 
 class StitchMeshSharedTest : public SharedDiscTest {};
 
-// Issue 8's "done when", with the default options (rules of thumb on).
-TEST_P(StitchMeshSharedTest, IsAValidDiscOfTheIssueSizes) {
+// The target sizes with the default options (rules of thumb on).
+TEST_P(StitchMeshSharedTest, IsAValidDiscOfTheTargetSizes) {
   Meshed m;
   m.disc = disc();
   m.result = make_stitch_mesh(m.disc, StitchMeshParams{});
@@ -209,7 +209,7 @@ INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedTest, ::testing::ValuesIn(kMesh
 // Other gauges: stitches much coarser than the default (a chunky machine on a
 // small object: a row can be as tall as a feature of the cut), flat ones
 // (course four times the wale) and tall ones. The stitch mesh must stay
-// valid; issue 8's sizes are for the default gauge only. At these sizes rows
+// valid; the target sizes are for the default gauge only. At these sizes rows
 // begin and end at tips of the cut, and strips need the handling that
 // docs/stitch-mesh.md, "Other gauges", lists (each size made one of them
 // fail on some mesh without it).
@@ -246,7 +246,7 @@ std::pair<Meshed, Meshed> defaults_and(const LabelledDisc& disc, const StitchMes
 
 // Saddles of the row time held on a level (docs/stitch-mesh.md, step 2):
 // on these two cut meshes, left where the fit put them, they leave a fan of
-// wale sides across the surface and the wale mean misses issue 8's figure;
+// wale sides across the surface and the wale mean misses its target;
 // held, the fan is gone.
 class StitchMeshSharedSaddleTest : public SharedDiscTest {};
 
