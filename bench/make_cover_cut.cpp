@@ -1,4 +1,4 @@
-// make_cover_cut: writes a cut folder (cut-mesh.obj + cuts.json, the input of
+// make_cover_cut: writes a cut folder (cut-mesh.obj + cut.json, the input of
 // `wearknit wearability`) for a cover made of a mesh's own surface, cut along
 // one path of mesh edges through extreme points of the mesh, split into arcs.
 //   make_cover_cut GARMENT.obj OUT_DIR [EDGES_PER_ARC [EXTREMES...]]
@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(dir);
   std::ofstream obj(dir / "cut-mesh.obj");
   planner::write_obj(obj, cover);
-  std::ofstream json(dir / "cuts.json");
+  std::ofstream json(dir / "cut.json");
   json << cuts.dump(1) << '\n';
   if (!obj || !json) {
     std::cerr << "make_cover_cut: cannot write " << dir << '\n';

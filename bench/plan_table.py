@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Prints one Markdown table row per plan folder from its report.json and
-cuts.json (bench/plan_all.sh, bench/plan_results.sh).
+cuts.json (bench/plan_all.sh, bench/plan_results.sh, bench/results.sh).
 
   bench/plan_table.py NAME=DIR[:EXIT:WALL_S] ...
 """
@@ -29,26 +29,21 @@ for arg in sys.argv[1:]:
     failed = []
     partial = ""
     if not plan:
-        # Killed (timeout) or failed before the merge: the cut's report is in
-        # the folder, the stitch-mesh branch's in its staging folder.
-        try:
-            with open(os.path.join(folder, ".plan-knit", "report.json")) as f:
-                knit = json.load(f)
-        except (OSError, ValueError):
-            knit = {}
+        # Killed (timeout) or stopped before plan.json: the folder's summary
+        # holds what the stages that finished wrote.
         if "time_s" in report:
             times["cut"] = report["time_s"].get("total", 0.0)
-        if "stitch_mesh" in knit:
-            times["stitch-mesh"] = knit["stitch_mesh"].get("seconds", 0.0)
-        if "schedule" in knit:
-            times["schedule"] = knit["schedule"].get("time_s", 0.0)
+        if "stitch_mesh" in report:
+            times["stitch-mesh"] = report["stitch_mesh"].get("seconds", 0.0)
+        if "schedule" in report:
+            times["schedule"] = report["schedule"].get("time_s", 0.0)
         s = {}
-        if "stitch_mesh" in knit:
-            s["stitches"] = knit["stitch_mesh"]["faces"]["total"]
-        if "schedule" in knit:
-            pieces = knit["schedule"]["pieces"]
+        if "stitch_mesh" in report:
+            s["stitches"] = report["stitch_mesh"]["faces"]["total"]
+        if "schedule" in report:
+            pieces = report["schedule"]["pieces"]
             s["pieces"] = len(pieces)
-            s["schedule_cuts"] = knit["schedule"]["cuts"]
+            s["schedule_cuts"] = report["schedule"]["cuts"]
             s["passes"] = sum(p["passes"] for p in pieces)
             s["estimated_knit_time_s"] = sum(p["estimated_knit_time_s"] for p in pieces)
         if "arcs" in report:

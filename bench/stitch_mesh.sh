@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Stitch meshing speed (issue 8): a bunny cover 10 cm tall at the default
-# gauge (the paper's 40x40 seed swatch, 42 x 115 mm: course 1.05 mm, wale
-# 2.875 mm; about 8,000 stitches) must be meshed in under 10 s.
+# Stitch meshing speed: a bunny cover 10 cm tall at the default gauge (the
+# paper's 40x40 seed swatch, 42 x 115 mm: course 1.05 mm, wale 2.875 mm;
+# about 8,000 stitches) must be meshed in under 10 s.
 #   bench/stitch_mesh.sh
 source "$(dirname "$0")/common.sh"
 bench_build stitch_mesh_bench wearknit

@@ -7,8 +7,8 @@ Each DIR holds stitch-mesh.smobj (written by `wearknit stitch-mesh`). Every
 wale side of every stitch is counted once per stitch it bounds, and split
 into its part along the course side next to it in the same stitch (a lean)
 and its part across it (the row's height there). Prints one Markdown row per
-mesh: the wale sides' mean length and share within 15% (as issue 8 counts
-them, per stitch side), the mean of their part across the row, the share
+mesh: the wale sides' mean length and share within 15% (as the stage's
+targets count them, per stitch side), the mean of their part across the row, the share
 that are too long and how many of those are too long only because they lean
 (their part across the row is within 15% of the wale length or shorter),
 how many of the leaning ones are on the sheet's boundary, and the share that

@@ -1,11 +1,10 @@
-// The scheduler on the stitch meshes of every shared mesh (issue 9's "done
-// when"): each mesh of ../shared/meshes is scaled to 100 mm along its longest
-// side, cut (§4) and stitch-meshed (§6) with the defaults, written and read
-// back as `wearknit stitch-mesh` and `wearknit schedule` do (write_smobj,
-// parse_smobj), scheduled (§7.1-7.3), and every piece (plain) is run through
-// the needle-bed VM (zero errors; the knit graph has one
-// knitted loop per subdivided face, made in the traced order, §7.4) and the
-// DAT backend.
+// The scheduler on the stitch meshes of every shared mesh: each mesh of
+// ../shared/meshes is scaled to 100 mm along its longest side, cut (§4) and
+// stitch-meshed (§6) with the defaults, written and read back as `wearknit
+// stitch-mesh` and `wearknit schedule` do (write_smobj, parse_smobj),
+// scheduled (§7.1-7.3), and every piece (plain) is run through the needle-bed
+// VM (zero errors; the knit graph has one knitted loop per subdivided face,
+// made in the traced order, §7.4) and the DAT backend.
 //
 // Under the sanitizers only quad-dominant inputs run (the others skip,
 // saying so): remeshing triangle input for the cut is too slow there.
@@ -205,14 +204,14 @@ TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOr
   RecordProperty("v053_drops", drops);
 }
 
-// Issue 9: the paper knits Fertility without extra cuts from scheduling
-// (§8). With the default options (100 random orders, the best 8 of each
-// kind refined by improve_order, patches moved up to 8 needles, held loops
-// set aside up to 8) this cut and stitch mesh of fertility.obj needs none
-// (the random orders alone 1; without setting loops aside 1 and 7, with
-// moves of up to 4 needles 3 and 13), and so does `wearknit cut --scale`
-// from the command line, whose scale differs in the last bit and whose
-// remesh differs with it (docs/scheduling.md).
+// The paper knits Fertility without extra cuts from scheduling (§8). With the
+// default options (100 random orders, the best 8 of each kind refined by
+// improve_order, patches moved up to 8 needles, held loops set aside up to 8)
+// this cut and stitch mesh of fertility.obj needs none (the random orders
+// alone 1; without setting loops aside 1 and 7, with moves of up to 4 needles
+// 3 and 13), and so does `wearknit cut --scale` from the command line, whose
+// scale differs in the last bit and whose remesh differs with it
+// (docs/scheduling.md).
 TEST(ScheduleSharedFertilityTest, RefinedOrdersNeedFewSchedulingCutsOnFertility) {
   WEARKNIT_REQUIRE_SHARED(shared);
   const fs::path file = shared / "meshes" / "fertility.obj";
