@@ -1,12 +1,15 @@
 // The assembly guide (DESIGN.md, planner stage 6): how to put the knit pieces
 // of a finished plan folder together.
 //
-// Reads DIR/stitch-mesh.smobj (faces, and the cut-arc of every boundary
-// side), DIR/cuts.json (arcs with their "label" sew|lace from the
-// wearability stage, §5, and the scheduler's "schedule_cuts", §7.3),
-// DIR/proxy.obj (where the arcs run), DIR/report.json (the scheduler's seed
-// and trials: the schedule is rebuilt from them to know which needle and row
-// every stitch of every piece has) and writes:
+// Reads the stage files of DIR through the stages' readers
+// (planner/pipeline.hpp): the cut (read_cut: where the cut-arcs run through
+// the proxy), their labels sew|lace (read_wearability, §5; without
+// wearability.json the arcs are unlabelled), the stitch mesh
+// (read_stitch_mesh: faces, and the cut-arc of every boundary side) and the
+// schedule (read_schedule: every piece laid flat, the wale seams and the
+// scheduler's cuts, §7.1, §7.3). Files that are missing, unreadable or made
+// from another cut or stitch mesh are refused, saying which verb to run; the
+// folder's summaries (report.json, cuts.json) are not read. It writes:
 //   DIR/assembly.svg, DIR/assembly.pdf  the same pages: a cover page with the
 //       legend and the order to close the seams, then every piece laid flat
 //       as it comes off the machine (x = needle, y = row, in the gauge's
@@ -33,7 +36,7 @@ struct AssemblySummary {
   int seams = 0;  // numbered seams (each drawn at its two sides)
   int sewn = 0;   // seams 1..sewn are sewn, the rest laced
   int laced = 0;
-  int arcs = 0;  // cut-arcs in cuts.json (every one is listed)
+  int arcs = 0;  // cut-arcs of the cut (every one is listed)
   int pdf_pages = 0;
 };
 

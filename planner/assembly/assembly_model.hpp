@@ -12,11 +12,11 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "knitout/diagnostic.hpp"
 #include "planner/schedule/piece_layout.hpp"
-#include "planner/schedule/schedule.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
 
 namespace planner::assembly {
@@ -51,7 +51,7 @@ struct Seam {
   bool lace = false;
   bool labelled = true;  // false: the arc has no wearability label (treated as sew)
   SeamKind kind = SeamKind::CutArc;
-  int arc = -1;  // cuts.json arc id (CutArc), or index in schedule_cuts (ScheduleCut)
+  int arc = -1;  // the cut's arc id (CutArc), or index in schedule_cuts (ScheduleCut)
   int part = 1;
   int parts = 1;
   std::array<std::vector<SideRef>, 2> sides;  // the two stretches that are joined, in order
@@ -70,7 +70,7 @@ struct ArcInfo {
 struct Model {
   std::filesystem::path dir;
   StitchMesh mesh;
-  Schedule schedule;
+  std::vector<std::pair<int, int>> wale_seams;  // faces joined across a wale seam (§7.1)
   std::vector<PieceLayout> layouts;
   std::vector<int> piece_of_face;
   std::vector<int> layout_index;  // face -> index in its piece's layout

@@ -16,54 +16,38 @@ namespace planner::assembly {
 
 using nlohmann::json;
 
-std::vector<Seam> schedule_cut_seams(const Model& m, const json& cuts,
-                                     const std::filesystem::path& cuts_path, bool check_rebuilt) {
-  std::set<std::pair<int, int>> rebuilt;
-  for (const CourseEdge& e : m.schedule.edges) {
-    if (e.cut) rebuilt.insert({e.lower, e.upper});
-  }
-  std::set<std::pair<int, int>> listed;
+std::vector<Seam> schedule_cut_seams(const Model& m, const json& schedule_cuts,
+                                     const std::filesystem::path& path) {
   std::vector<Seam> cut_seams;
-  if (cuts.contains("schedule_cuts")) {
-    try {
-      const json& list = cuts.at("schedule_cuts");
-      for (std::size_t c = 0; c < list.size(); ++c) {
-        Seam seam;
-        seam.kind = SeamKind::ScheduleCut;
-        seam.arc = static_cast<int>(c);
-        seam.lace = list[c].value("label", std::string("sew")) == "lace";
-        for (const json& pair : list[c].at("faces")) {
-          const int lower = pair.at(0).get<int>();
-          const int upper = pair.at(1).get<int>();
-          if (lower < 0 || upper < 0 || at(lower) >= m.mesh.faces.size() ||
-              at(upper) >= m.mesh.faces.size())
-            fail(cuts_path, "A004",
-                 "schedule_cuts[" + std::to_string(c) +
-                     "]: face out of range (the stitch mesh has " +
-                     std::to_string(m.mesh.faces.size()) + " faces)");
-          listed.insert({lower, upper});
-          const int below = shared_side(m, lower, upper, EdgeRole::CourseOut);
-          const int above = shared_side(m, upper, lower, EdgeRole::CourseIn);
-          if (below == kNone || above == kNone)
-            fail(cuts_path, "A004",
-                 "schedule_cuts[" + std::to_string(c) + "]: faces " + std::to_string(lower) +
-                     " and " + std::to_string(upper) + " do not share a course edge");
-          seam.sides[0].push_back({lower, below});
-          seam.sides[1].push_back({upper, above});
-        }
-        if (seam.sides[0].empty()) continue;
-        cut_seams.push_back(std::move(seam));
+  try {
+    for (std::size_t c = 0; c < schedule_cuts.size(); ++c) {
+      Seam seam;
+      seam.kind = SeamKind::ScheduleCut;
+      seam.arc = static_cast<int>(c);
+      seam.lace = schedule_cuts[c].value("label", std::string("sew")) == "lace";
+      for (const json& pair : schedule_cuts[c].at("faces")) {
+        const int lower = pair.at(0).get<int>();
+        const int upper = pair.at(1).get<int>();
+        if (lower < 0 || upper < 0 || at(lower) >= m.mesh.faces.size() ||
+            at(upper) >= m.mesh.faces.size())
+          fail(path, "A004",
+               "schedule_cuts[" + std::to_string(c) + "]: face out of range (the stitch mesh has " +
+                   std::to_string(m.mesh.faces.size()) + " faces)");
+        const int below = shared_side(m, lower, upper, EdgeRole::CourseOut);
+        const int above = shared_side(m, upper, lower, EdgeRole::CourseIn);
+        if (below == kNone || above == kNone)
+          fail(path, "A004",
+               "schedule_cuts[" + std::to_string(c) + "]: faces " + std::to_string(lower) +
+                   " and " + std::to_string(upper) + " do not share a course edge");
+        seam.sides[0].push_back({lower, below});
+        seam.sides[1].push_back({upper, above});
       }
-    } catch (const json::exception& e) {
-      fail(cuts_path, "A002", std::string("unexpected \"schedule_cuts\" content: ") + e.what());
+      if (seam.sides[0].empty()) continue;
+      cut_seams.push_back(std::move(seam));
     }
+  } catch (const json::exception& e) {
+    fail(path, "A002", std::string("unexpected \"schedule_cuts\" content: ") + e.what());
   }
-  if (check_rebuilt && listed != rebuilt)
-    fail(cuts_path, "A004",
-         "\"schedule_cuts\" lists " + std::to_string(listed.size()) +
-             " cut course edges but the schedule rebuilt from report.json cuts " +
-             std::to_string(rebuilt.size()) +
-             ": the folder's files do not belong together (run wearknit schedule again)");
   return cut_seams;
 }
 
@@ -74,7 +58,7 @@ std::vector<Seam> wale_seams(const Model& m) {
     std::array<std::uint32_t, 2> v;
   };
   std::vector<Pair> pairs;
-  for (const auto& [f, g] : m.schedule.wale_seams) {
+  for (const auto& [f, g] : m.wale_seams) {
     const int sf = shared_side(m, f, g, EdgeRole::Wale);
     const int sg = shared_side(m, g, f, EdgeRole::Wale);
     if (sf == kNone || sg == kNone) continue;
@@ -161,7 +145,7 @@ using ArcItems = std::map<int, std::array<std::vector<Item>, 2>>;
 // two sides by the way it runs (the disc's boundary runs along one copy of
 // a cut and back along the other).
 ArcItems place_on_arcs(const Model& m, const std::unordered_map<std::uint64_t, int>& arc_of_key,
-                       const std::map<int, ArcLine>& lines, const PlanFiles& files) {
+                       const std::map<int, ArcLine>& lines) {
   ArcItems arc_items;
   for (std::size_t f = 0; f < m.mesh.faces.size(); ++f) {
     const StitchFace& face = m.mesh.faces[f];
@@ -172,9 +156,9 @@ ArcItems place_on_arcs(const Model& m, const std::unordered_map<std::uint64_t, i
       if (it == arc_of_key.end() || other_side(m, side).face != kNone) continue;
       const auto line = lines.find(it->second);
       if (line == lines.end())
-        fail(files.smobj, "A004",
+        fail(m.dir / "stitch-mesh.smobj", "A004",
              "face " + std::to_string(f + 1) + " lies on cut-arc " + std::to_string(it->second) +
-                 ", which " + files.cuts.filename().string() + " does not list");
+                 ", which the cut does not have (run wearknit stitch-mesh again)");
       const ArcLine& pl = line->second;
       const auto v = side_vertices(m, side);
       const Eigen::Vector3d mid = side_mid(m, side);
@@ -260,8 +244,8 @@ std::vector<Seam> split_arc(std::array<std::vector<Item>, 2>& items) {
 }  // namespace
 
 ArcSeams arc_seams(Model& m, const std::unordered_map<std::uint64_t, int>& arc_of_key,
-                   const std::map<int, ArcLine>& lines, const PlanFiles& files) {
-  ArcItems arc_items = place_on_arcs(m, arc_of_key, lines, files);
+                   const std::map<int, ArcLine>& lines) {
+  ArcItems arc_items = place_on_arcs(m, arc_of_key, lines);
   ArcSeams out;
   for (ArcInfo& info : m.arcs) {
     auto found = arc_items.find(info.id);

@@ -216,16 +216,12 @@ TEST(AssemblyTest, GuideOfARealPlanFolderShowsEveryPieceAndSeam) {
   EXPECT_EQ(count(svg, "class=\"legend-sew\""), 1);
   EXPECT_EQ(count(svg, "class=\"legend-lace\""), 1);
 
-  // The scheduler wrote each piece's layout; without those files the guide
-  // rebuilds the schedule from report.json's seed, trials and options: same
-  // pages.
-  for (std::size_t p = 1; p <= pieces; ++p) {
-    const fs::path layout = dir / "pieces" / ("piece-" + std::to_string(p) + ".layout.json");
-    ASSERT_TRUE(fs::exists(layout)) << layout;
-    fs::remove(layout);
-  }
-  const auto rebuilt = run_wearknit("assembly '" + dir.string() + "' -q");
-  ASSERT_EQ(rebuilt.exit_code, 0) << rebuilt.err;
+  // The guide reads the stage files, not the folder's summaries: without
+  // report.json and cuts.json it draws the same pages.
+  fs::remove(dir / "report.json");
+  fs::remove(dir / "cuts.json");
+  const auto again = run_wearknit("assembly '" + dir.string() + "' -q");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(read_file(dir / "assembly.svg"), svg);
 
   // The library call gives the same figures, without a wearer.
@@ -256,8 +252,6 @@ TEST(AssemblyTest, MissingOrCorruptFilesGiveAClearErrorAndWriteNothing) {
   const fs::path dir = make_plan(shared / "meshes" / "3torus-quad.obj", "assembly-bad", nullptr);
   ASSERT_FALSE(dir.empty());
   const std::string d = "'" + dir.string() + "'";
-  const std::string cuts = read_file(dir / "cuts.json");
-  const std::string report = read_file(dir / "report.json");
 
   // Without wearability the arcs carry no label: the guide says so and treats them as sewn.
   auto r = run_wearknit("assembly " + d + " -q");
@@ -267,62 +261,54 @@ TEST(AssemblyTest, MissingOrCorruptFilesGiveAClearErrorAndWriteNothing) {
   for (const char* name : {"assembly.svg", "assembly.pdf", "assembly-3d.png", "assembly.json"})
     fs::remove(dir / name);
 
-  fs::remove(dir / "cuts.json");
+  // A stage's file missing: the verb that makes it.
+  const fs::path schedule = dir / "schedule.json";
+  const std::string schedule_text = read_file(schedule);
+  fs::remove(schedule);
   r = run_wearknit("assembly " + d);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, (dir / "cuts.json").string() +
-                       ": error: [A001] cannot open file (a plan folder needs it for the "
-                       "assembly guide)\n");
+  EXPECT_EQ(r.err, schedule.string() + ": error: [A001] missing (run wearknit schedule first)\n");
   EXPECT_TRUE(guide_files(dir).empty());
+  write_file(schedule, schedule_text);
 
-  write_file(dir / "cuts.json", cuts.substr(0, cuts.size() / 2));
+  // A stage's file that its reader refuses: the reader's diagnostic.
+  const fs::path cut = dir / "cut.json";
+  const std::string cut_text = read_file(cut);
+  write_file(cut, cut_text.substr(0, cut_text.size() / 2));
   r = run_wearknit("assembly " + d);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, (dir / "cuts.json").string() + ": error: [A002] not valid JSON\n");
-  EXPECT_TRUE(guide_files(dir).empty());
-
-  write_file(dir / "cuts.json", "{\"arcs\": 3}");
-  r = run_wearknit("assembly " + d);
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, (dir / "cuts.json").string() +
-                       ": error: [A002] no \"arcs\" list (write it with wearknit cut)\n");
-  EXPECT_TRUE(guide_files(dir).empty());
-
-  // An arc naming a vertex proxy.obj does not have.
-  json bad = json::parse(cuts);
-  ASSERT_FALSE(bad.at("arcs").empty());
-  bad["arcs"][0]["edges"][0][0] = 999999;
-  write_file(dir / "cuts.json", bad.dump());
-  r = run_wearknit("assembly " + d);
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find((dir / "cuts.json").string() + ": error: [A004] arc " +
-                       std::to_string(bad["arcs"][0]["id"].get<int>()) +
-                       ": vertex 999999 is not a vertex of proxy.obj"),
-            std::string::npos)
+  EXPECT_EQ(r.err.rfind(cut.string() + ": error: [A002] cannot be read (run wearknit cut again): ",
+                        0),
+            0u)
       << r.err;
+  EXPECT_NE(r.err.find("[P021]"), std::string::npos) << r.err;
   EXPECT_TRUE(guide_files(dir).empty());
+  write_file(cut, cut_text);
 
-  // A report whose pieces do not match the stitch mesh's schedule.
-  write_file(dir / "cuts.json", cuts);
-  json other = json::parse(report);
-  other["schedule"]["pieces"].push_back(other["schedule"]["pieces"][0]);
-  write_file(dir / "report.json", other.dump());
+  // Pieces made from another stitch mesh.
+  json other = json::parse(schedule_text);
+  other["stitch_mesh_id"] = "0123456789abcdef";
+  write_file(schedule, other.dump());
   r = run_wearknit("assembly " + d);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find((dir / "report.json").string() + ": error: [A004] lists "),
-            std::string::npos)
-      << r.err;
+  EXPECT_EQ(r.err, schedule.string() +
+                       ": error: [A004] the pieces belong to another stitch mesh (run wearknit "
+                       "schedule again)\n");
   EXPECT_TRUE(guide_files(dir).empty());
+  write_file(schedule, schedule_text);
 
   // A piece layout written by the scheduler that cannot be read.
-  write_file(dir / "report.json", report);
   const fs::path layout = dir / "pieces" / "piece-1.layout.json";
   const std::string layout_text = read_file(layout);
   write_file(layout, "[1, 2");
   r = run_wearknit("assembly " + d);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err,
-            layout.string() + ": error: [A002] not a piece layout (wearknit-piece-layout 1)\n");
+  EXPECT_EQ(r.err.rfind(schedule.string() +
+                            ": error: [A002] cannot be read (run wearknit schedule again): ",
+                        0),
+            0u)
+      << r.err;
+  EXPECT_NE(r.err.find(layout.string()), std::string::npos) << r.err;
   EXPECT_TRUE(guide_files(dir).empty());
 
   // Put back, it works again.
