@@ -21,8 +21,9 @@ namespace {
 
 namespace sd = stitch_discs;
 
-// Everything issue 8 asks of a stitch mesh made from a disc of known area;
-// returns the result for further checks.
+// A good stitch mesh of a disc of known area: valid faces, one disc with the
+// input's boundary, stitches of the machine's size, as many as the area
+// holds, on the surface; returns the result for further checks.
 StitchMeshResult expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2,
                                          const StitchMeshParams& params, const std::string& name) {
   SCOPED_TRACE(name);
