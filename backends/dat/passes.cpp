@@ -613,7 +613,7 @@ bool PassBuilder::add_split(const Instruction& in, const CarrierSet& cs, std::ui
       op = n.is_front() ? SlotOp::XferToBack : SlotOp::XferToFront;
     } else {
       if (!svs_) {
-        svs_.emplace();
+        svs_ = SplitViaSliders{};
         svs_->racking = racking_;
       }
       if (svs_->has_return) {
