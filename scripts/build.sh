@@ -17,6 +17,10 @@ case "$kind" in
 esac
 generator=()
 if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+# ccache (when installed) keeps compiled objects between builds and clones.
+if command -v ccache >/dev/null 2>&1; then
+  opts+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
 if [ ! -f "$dir/CMakeCache.txt" ]; then
   cmake -S . -B "$dir" "${generator[@]}" "${opts[@]}" "$@"
 else
