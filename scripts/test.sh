@@ -19,22 +19,35 @@ case "${1:-}" in
 esac
 scripts/install-deps.sh
 export WEARKNIT_JOBS=${WEARKNIT_JOBS:-$(nproc)}
+# Prints how long the step before took (where a run's time goes).
+step_start=$SECONDS
+took() {
+  echo "-- $1: $((SECONDS - step_start)) s"
+  step_start=$SECONDS
+}
 
 echo "== format check"
 scripts/check-format.sh
+took "format check"
 
 if $quick; then
   echo "== strict build + fast tests"
   scripts/build.sh strict
+  took "strict build"
   ctest --test-dir build --output-on-failure --parallel "$WEARKNIT_JOBS" -L fast
+  took "fast tests"
   exit 0
 fi
 
 echo "== strict build + every test"
 scripts/build.sh strict
+took "strict build"
 ctest --test-dir build --output-on-failure --parallel "$WEARKNIT_JOBS"
+took "every test"
 
 echo "== sanitizer build + fast tests"
 scripts/build.sh sanitize
+took "sanitizer build"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure --parallel "$WEARKNIT_JOBS" -L fast
+took "fast tests under the sanitizers"

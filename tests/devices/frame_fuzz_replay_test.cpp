@@ -15,8 +15,9 @@ namespace devices {
 namespace {
 
 TEST(FrameFuzzReplayTest, EverySavedInputPassesTheFuzzChecks) {
+  const std::filesystem::path inputs = wearknit::test::source_dir() / "tests/devices/fuzz_inputs";
   std::size_t replayed = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(WEARKNIT_FRAME_FUZZ_INPUTS)) {
+  for (const auto& entry : std::filesystem::directory_iterator(inputs)) {
     if (!entry.is_regular_file()) continue;
     const std::string data = wearknit::test::read_file(entry.path());
     SCOPED_TRACE(entry.path().filename().string());
@@ -25,7 +26,7 @@ TEST(FrameFuzzReplayTest, EverySavedInputPassesTheFuzzChecks) {
         "");
     ++replayed;
   }
-  EXPECT_GT(replayed, 0u) << "no saved fuzz inputs found in " << WEARKNIT_FRAME_FUZZ_INPUTS;
+  EXPECT_GT(replayed, 0u) << "no saved fuzz inputs found in " << inputs;
 }
 
 }  // namespace
