@@ -17,6 +17,14 @@ case "$kind" in
 esac
 generator=()
 if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+# ccache (when installed) keeps compiled objects between builds and clones:
+# paths under the checkout are hashed relative to it, and the build folder
+# is left out of the hash (the debug info of an object reused from another
+# clone names that clone's folder).
+if command -v ccache >/dev/null 2>&1; then
+  opts+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
+fi
 if [ ! -f "$dir/CMakeCache.txt" ]; then
   cmake -S . -B "$dir" "${generator[@]}" "${opts[@]}" "$@"
 else

@@ -13,6 +13,24 @@
 
 namespace wearknit::test {
 
+std::filesystem::path source_dir() {
+  return WEARKNIT_SOURCE_DIR;
+}
+
+std::string wearknit_binary() {
+  return WEARKNIT_BINARY;
+}
+
+std::optional<std::filesystem::path> shared_dir() {
+  if (const char* env = std::getenv("WEARKNIT_SHARED"); env != nullptr && *env != '\0') {
+    if (std::filesystem::is_directory(env)) return std::filesystem::path(env);
+    return std::nullopt;
+  }
+  const auto candidate = source_dir().parent_path() / "shared";
+  if (std::filesystem::is_directory(candidate)) return candidate;
+  return std::nullopt;
+}
+
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream buffer;
@@ -34,7 +52,7 @@ std::filesystem::path make_temp_dir(const std::string& prefix) {
 bool run_wearknit_and_kill(const std::string& args, const std::filesystem::path& watch, int lines) {
   const auto dir = make_temp_dir("wearknit-kill");
   const auto pid_file = dir / "pid";
-  const std::string command = std::string("'") + WEARKNIT_BINARY + "' " + args +
+  const std::string command = "'" + wearknit_binary() + "' " + args +
                               " >/dev/null 2>&1 </dev/null & echo $! >'" + pid_file.string() +
                               "'; wait";
   std::thread runner([&] { [[maybe_unused]] const int status = std::system(command.c_str()); });
@@ -60,9 +78,8 @@ CommandResult run_wearknit(const std::string& args, const std::string& stdin_tex
   const auto out_path = dir / "stdout";
   const auto err_path = dir / "stderr";
   write_file(in_path, stdin_text);
-  const std::string command = std::string("'") + WEARKNIT_BINARY + "' " + args + " <'" +
-                              in_path.string() + "' >'" + out_path.string() + "' 2>'" +
-                              err_path.string() + "'";
+  const std::string command = "'" + wearknit_binary() + "' " + args + " <'" + in_path.string() +
+                              "' >'" + out_path.string() + "' 2>'" + err_path.string() + "'";
   const int status = std::system(command.c_str());
   CommandResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -12,17 +12,15 @@
 
 namespace wearknit::test {
 
+// The project root (the checkout the tests were built from).
+std::filesystem::path source_dir();
+
+// The path of the wearknit binary, for end-to-end tests of the verbs.
+std::string wearknit_binary();
+
 // The shared data folder: $WEARKNIT_SHARED, else ../shared beside the
 // project root; nullopt when neither exists.
-inline std::optional<std::filesystem::path> shared_dir() {
-  if (const char* env = std::getenv("WEARKNIT_SHARED"); env != nullptr && *env != '\0') {
-    if (std::filesystem::is_directory(env)) return std::filesystem::path(env);
-    return std::nullopt;
-  }
-  const auto candidate = std::filesystem::path(WEARKNIT_SOURCE_DIR).parent_path() / "shared";
-  if (std::filesystem::is_directory(candidate)) return candidate;
-  return std::nullopt;
-}
+std::optional<std::filesystem::path> shared_dir();
 
 // Skips the running test, visibly, when ../shared is absent.
 #define WEARKNIT_REQUIRE_SHARED(var)                                                   \

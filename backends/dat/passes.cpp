@@ -539,7 +539,7 @@ bool PassBuilder::return_from_slider(const knitout::Needle& n, std::uint32_t lin
 bool PassBuilder::split_to_slider(const knitout::Needle& n, const knitout::Needle& t,
                                   std::uint32_t line) {
   if (!svs_) {
-    svs_.emplace();
+    svs_ = SplitViaSliders{};
     svs_->racking = racking_;
   }
   if (svs_->has_return) {

@@ -5,13 +5,15 @@
 #include <cstdio>
 #include <string>
 
+#include "tests/test_support.hpp"
+
 namespace devices::test {
 
 class BackgroundWearknit {
  public:
   explicit BackgroundWearknit(const std::string& args) {
     const std::string command =
-        std::string("timeout 60 '") + WEARKNIT_BINARY + "' " + args + " 2>&1";
+        "timeout 60 '" + wearknit::test::wearknit_binary() + "' " + args + " 2>&1";
     pipe_ = ::popen(command.c_str(), "r");
     if (pipe_ == nullptr) return;
     char line[4096];

@@ -119,9 +119,10 @@ TEST_F(CliDevicesTest, TwoSendersToOneLoopbackMachineTakeTurns) {
   const std::string uri = "loopback:" + (dir_ / "lb2").string();
   std::string command;
   for (const char* name : {"a", "b"}) {
-    command += std::string("('") + WEARKNIT_BINARY + "' send -q " + path(std::string(name) + ".k") +
-               " --to " + uri + " 2>" + path(std::string(name) + ".err") + "; echo $? >" +
-               path(std::string(name) + ".rc") + ") & ";
+    command += "('" + wearknit::test::wearknit_binary() + "' send -q " +
+               path(std::string(name) + ".k") + " --to " + uri + " 2>" +
+               path(std::string(name) + ".err") + "; echo $? >" + path(std::string(name) + ".rc") +
+               ") & ";
   }
   command += "wait";
   ASSERT_EQ(std::system(command.c_str()), 0);
@@ -208,7 +209,7 @@ TEST_F(CliDevicesTest, OnATerminalSendDrawsAProgressBar) {
   wearknit::test::write_file(dir_ / "t.k", test::sheet_knitout(6, 10));
   // `script` runs send with a pseudo-terminal as its stdout.
   const auto r = wearknit::test::run_wearknit(
-      "--version >/dev/null; script -qec \"'" + std::string(WEARKNIT_BINARY) + "' send " +
+      "--version >/dev/null; script -qec \"'" + wearknit::test::wearknit_binary() + "' send " +
       path("t.k") + " --to loopback:" + (dir_ / "lb").string() + "\" /dev/null");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\r[##############################] 12/12 rows knitted (12 received) done"),
@@ -220,7 +221,7 @@ TEST_F(CliDevicesTest, OnATerminalSendDrawsAProgressBar) {
 TEST_F(CliDevicesTest, DeviceDebugTracesFramesAndDecisions) {
   wearknit::test::write_file(dir_ / "d.k", test::sheet_knitout(4, 4));
   const auto r = wearknit::test::run_wearknit(
-      "--version >/dev/null; WEARKNIT_DEVICE_DEBUG=1 '" + std::string(WEARKNIT_BINARY) +
+      "--version >/dev/null; WEARKNIT_DEVICE_DEBUG=1 '" + wearknit::test::wearknit_binary() +
       "' send -q " + path("d.k") + " --to loopback:" + (dir_ / "lb").string());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find(" host -> HELLO job=0 seq=1 len=6\n"), std::string::npos) << r.err;

@@ -166,10 +166,6 @@ TEST(ProxyTest, TriangleInputIsRemeshedIntoQuadDominantSurfaceOfSameTopology) {
 // percent off extract cleanly and are tried first.
 TEST(ProxyTest, AFailedExtractionIsTriedAgainAtNearbySpacings) {
   WEARKNIT_REQUIRE_SHARED(shared);
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "several remeshes of mannequin (10 s in the strict build) are too slow under "
-                  "the sanitizers; the strict build runs this test";
-#endif
   knitout::DiagnosticSink sink;
   std::optional<PolygonMesh> mesh =
       load_mesh((shared / "meshes" / "mannequin.obj").string(), {}, sink);
@@ -194,10 +190,6 @@ TEST(ProxyTest, AFailedExtractionIsTriedAgainAtNearbySpacings) {
 // depend on the units.
 TEST(ProxyTest, SamplingDoesNotDependOnTheUnits) {
   WEARKNIT_REQUIRE_SHARED(shared);
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "two decimations of 1.3 million edges (27 s in the strict build) are too slow "
-                  "under the sanitizers; the strict build runs this test";
-#endif
   knitout::DiagnosticSink sink;
   const std::optional<PolygonMesh> unit =
       load_mesh((shared / "meshes" / "anchor.obj").string(), {}, sink);

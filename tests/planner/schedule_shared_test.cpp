@@ -1,13 +1,11 @@
 // The scheduler on the stitch meshes of every shared mesh: each mesh of
-// ../shared/meshes is scaled to 100 mm along its longest side, cut (§4) and
-// stitch-meshed (§6) with the defaults, written and read back as `wearknit
-// stitch-mesh` and `wearknit schedule` do (write_smobj, parse_smobj),
-// scheduled (§7.1-7.3), and every piece (plain) is run through the needle-bed
-// VM (zero errors; the knit graph has one knitted loop per subdivided face,
-// made in the traced order, §7.4) and the DAT backend.
-//
-// Under the sanitizers only quad-dominant inputs run (the others skip,
-// saying so): remeshing triangle input for the cut is too slow there.
+// ../shared/meshes is scaled to 100 mm along its longest side, cut (§4, once
+// per test run: shared_cuts.hpp) and stitch-meshed (§6) with the defaults,
+// written and read back as `wearknit stitch-mesh` and `wearknit schedule` do
+// (write_cut and read_cut, write_smobj and parse_smobj), scheduled
+// (§7.1-7.3), and every piece (plain) is run through the needle-bed VM (zero
+// errors; the knit graph has one knitted loop per subdivided face, made in
+// the traced order, §7.4) and the DAT backend.
 //
 // A mesh whose stitch mesh is not produced is a failure. A mesh whose
 // stitch mesh the scheduler cannot knit yet is listed in
@@ -26,10 +24,7 @@
 #include "backends/dat/passes.hpp"
 #include "backends/dat/raster.hpp"
 #include "knitout/parser.hpp"
-#include "planner/cut/cut.hpp"
-#include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
-#include "planner/proxy/proxy.hpp"
 #include "planner/schedule/knitout_emit.hpp"
 #include "planner/schedule/schedule.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
@@ -37,6 +32,7 @@
 #include "simulators/bed/knit_graph.hpp"
 #include "simulators/bed/validate.hpp"
 #include "tests/planner/knitted_lines.hpp"
+#include "tests/planner/shared_cuts.hpp"
 #include "tests/test_support.hpp"
 
 namespace planner {
@@ -47,29 +43,6 @@ namespace fs = std::filesystem;
 // Stitch meshes that the scheduler does not knit correctly yet, with the
 // failure they show.
 const std::map<std::string, std::string> kScheduleFailures = {};
-
-// Every .obj of ../shared/meshes, by name; empty without the shared folder
-// (each test then skips visibly through WEARKNIT_REQUIRE_SHARED).
-std::vector<std::string> shared_meshes() {
-  std::vector<std::string> names;
-  const auto shared = wearknit::test::shared_dir();
-  std::error_code ec;
-  for (const auto& entry :
-       fs::directory_iterator(shared ? *shared / "meshes" : fs::path("/nonexistent"), ec)) {
-    if (entry.path().extension() == ".obj") names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  if (names.empty()) names.push_back("no-shared-meshes");
-  return names;
-}
-
-std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
-  std::string name = info.param;
-  for (char& c : name) {
-    if (c == '-') c = '_';
-  }
-  return name;
-}
 
 // Subdivided faces (§7.4, Fig. 11): two per stitch, one per short-row
 // triangle (knit in the row's first pass only).
@@ -84,41 +57,18 @@ std::size_t subdivided_faces(const StitchMesh& mesh, const Schedule& s, const Pi
   return n;
 }
 
-// The stitch mesh of a shared mesh: scaled to 100 mm along its longest side,
-// cut and stitch-meshed with the defaults, each written and read back, as
-// `wearknit cut --scale`, `wearknit stitch-mesh` and `wearknit schedule` do.
-// Skips (triangle input under the sanitizers, known failures) and fails
-// through gtest; `mesh` is set on success.
-void stitch_shared(const fs::path& file, const std::string& name, std::optional<StitchMesh>& mesh) {
-  knitout::DiagnosticSink load_sink;
-  std::optional<PolygonMesh> surface = load_mesh(file.string(), {}, load_sink);
-  ASSERT_TRUE(surface) << file;
-#if defined(__SANITIZE_ADDRESS__)
-  // The cut stage remeshes triangle input into its quad proxy first, about
-  // 2 s of CPU per mesh in the strict build and several times that under the
-  // sanitizers: there, only the inputs the cut stage takes as they are run
-  // (the strict build runs every mesh).
-  if (!is_quad_dominant(*surface)) {
-    GTEST_SKIP() << name << ": triangle input, whose proxy remeshing is too slow under the "
-                 << "sanitizers; the strict build schedules it";
-  }
-#endif
+// The stitch mesh of a shared mesh: its cut (shared_cuts.hpp) stitch-meshed
+// with the defaults, written and read back, as `wearknit stitch-mesh` and
+// `wearknit schedule` do. Skips (known failures) and fails through gtest;
+// `mesh` is set on success.
+void stitch_shared(const fs::path& shared, const std::string& name,
+                   std::optional<StitchMesh>& mesh) {
   if (const auto known = kScheduleFailures.find(name); known != kScheduleFailures.end()) {
     GTEST_SKIP() << name << ": known scheduler failure, not yet fixed: " << known->second;
   }
-  const Vec3 size = bounding_box_size(*surface);
-  for (Vec3& p : surface->positions) p *= 100.0 / size.maxCoeff();
-  ProxyResult proxy = make_proxy(*surface, ProxyParams{});
-  // The cut folder is written and read back, as between the stages of
-  // `wearknit plan` (the stitch mesh depends on the rounding of the files).
-  const CutMesh cut = cut_surface(HalfedgeMesh(std::move(proxy.mesh)), CutParams{});
-  const fs::path dir = wearknit::test::make_temp_dir("schedule_shared");
-  ASSERT_EQ(write_cut(dir.string(), Cut{cut, {}, 0}, {false, 600}), "") << name;
-  knitout::DiagnosticSink cut_sink;
-  const std::optional<Cut> cut_back = read_cut(dir.string(), cut_sink);
-  fs::remove_all(dir);
-  ASSERT_TRUE(cut_back) << name << ": " << knitout::format(cut_sink.diagnostics().front());
-  const LabelledDisc disc = labelled_disc(cut_back->mesh);
+  const std::optional<Cut> cut = shared_cuts::read_shared_cut(shared, name);
+  ASSERT_TRUE(cut) << name;
+  const LabelledDisc disc = labelled_disc(cut->mesh);
   ASSERT_TRUE(check_disc(disc).empty()) << name << ": the cut is not a disc";
   const StitchMeshResult stitched = make_stitch_mesh(disc, StitchMeshParams{});
   if (!stitched.problems.empty()) {
@@ -138,11 +88,8 @@ class ScheduleSharedTest : public ::testing::TestWithParam<std::string> {};
 TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOrder) {
   WEARKNIT_REQUIRE_SHARED(shared);
   const std::string name = GetParam();
-  const fs::path file = shared / "meshes" / (name + ".obj");
-  ASSERT_TRUE(fs::exists(file)) << file;
-
   std::optional<StitchMesh> mesh;
-  stitch_shared(file, name, mesh);
+  stitch_shared(shared, name, mesh);
   if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure() || !mesh) return;
 
   ScheduleParams params;
@@ -204,20 +151,18 @@ TEST_P(ScheduleSharedTest, EveryPieceValidatesConvertsAndKnitsItsFacesInTracedOr
   RecordProperty("v053_drops", drops);
 }
 
-// The paper knits Fertility without extra cuts from scheduling (§8). With the
-// default options (100 random orders, the best 8 of each kind refined by
-// improve_order, patches moved up to 8 needles, held loops set aside up to 8)
-// this cut and stitch mesh of fertility.obj needs none (the random orders
-// alone 1; without setting loops aside 1 and 7, with moves of up to 4 needles
-// 3 and 13), and so does `wearknit cut --scale` from the command line, whose
-// scale differs in the last bit and whose remesh differs with it
-// (docs/scheduling.md).
+// The paper knits Fertility without extra cuts from scheduling
+// (§8). With the default options (100 random orders, the best 8 of each
+// kind refined by improve_order, patches moved up to 8 needles, held loops
+// set aside up to 8) this cut and stitch mesh of fertility.obj needs none
+// (the random orders alone 1; without setting loops aside 1 and 7, with
+// moves of up to 4 needles 3 and 13), and so does `wearknit cut --scale`
+// from the command line, whose scale differs in the last bit and whose
+// remesh differs with it (docs/scheduling.md).
 TEST(ScheduleSharedFertilityTest, RefinedOrdersNeedFewSchedulingCutsOnFertility) {
   WEARKNIT_REQUIRE_SHARED(shared);
-  const fs::path file = shared / "meshes" / "fertility.obj";
-  ASSERT_TRUE(fs::exists(file)) << file;
   std::optional<StitchMesh> mesh;
-  stitch_shared(file, "fertility", mesh);
+  stitch_shared(shared, "fertility", mesh);
   if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure() || !mesh) return;
   const Schedule s = schedule(*mesh, ScheduleParams{});
   RecordProperty("cuts", s.cuts);
@@ -228,8 +173,8 @@ TEST(ScheduleSharedFertilityTest, RefinedOrdersNeedFewSchedulingCutsOnFertility)
   EXPECT_LE(s.cuts * 3, s.random_cuts) << "the refinement removes most of the random orders' cuts";
 }
 
-INSTANTIATE_TEST_SUITE_P(Meshes, ScheduleSharedTest, ::testing::ValuesIn(shared_meshes()),
-                         test_name);
+INSTANTIATE_TEST_SUITE_P(Meshes, ScheduleSharedTest, ::testing::ValuesIn(shared_cuts::mesh_names()),
+                         shared_cuts::test_name);
 
 }  // namespace
 }  // namespace planner

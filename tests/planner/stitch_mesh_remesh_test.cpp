@@ -21,10 +21,9 @@ namespace {
 
 namespace sd = stitch_discs;
 
-// A valid stitch mesh of the target sizes made from a disc of known area
-// (one disc with the input's boundary, mean course and wale lengths within
-// 5%, 90% of each within 15%, stitches within 10% of area / (course x wale),
-// no stitch off the surface); returns the result for further checks.
+// A good stitch mesh of a disc of known area: valid faces, one disc with the
+// input's boundary, stitches of the machine's size, as many as the area
+// holds, on the surface; returns the result for further checks.
 StitchMeshResult expect_good_stitch_mesh(const LabelledDisc& disc, double area_mm2,
                                          const StitchMeshParams& params, const std::string& name) {
   SCOPED_TRACE(name);

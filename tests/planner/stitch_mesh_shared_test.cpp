@@ -1,52 +1,29 @@
 // Stitch meshing of the cut meshes of every shared test mesh: each mesh is
 // scaled to 100 mm along its longest side, cut (§4) and remeshed (§6) at the
 // default gauge with the default options. Every stitch mesh must be valid
-// (only the four face types, one disc with the cut mesh's boundary) and meet
-// the target sizes (Limits below); the cut meshes that miss a figure are
-// named below with the bound they are held to instead, and
-// docs/stitch-mesh.md says why.
-//
-// Triangle inputs are remeshed by the cut stage first, which takes 2-30 s
-// per mesh; under the sanitizers (scripts/test.sh's second run) those meshes
-// are skipped with a message saying so, and the strict build checks them.
+// (only the four face types, one disc with the cut mesh's boundary) and have
+// the stitch sizes of Limits: stitches of the machine's size, as many as the
+// area holds. The cuts are made once per test run (shared_cuts.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <iostream>
 #include <map>
-#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "planner/cut/cut.hpp"
-#include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
-#include "planner/proxy/proxy.hpp"
-#include "planner/proxy/remesh.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
 #include "planner/stitch_mesh/stitch_mesher.hpp"
-#include "planner/wearability/wearability.hpp"
+#include "tests/planner/shared_cuts.hpp"
 #include "tests/planner/stitch_discs.hpp"
 #include "tests/test_support.hpp"
 
 namespace planner {
 namespace {
 
-// Every .obj in ../shared/meshes (ListsEveryMesh keeps this in step).
-const std::vector<std::string> kMeshes = {
-    "3torus-quad",       "anchor",        "armadillo-qd",  "armadillo",
-    "bunny-npm",         "bunny-qd",      "bunny",         "cactus-open",
-    "camelhead",         "chipped-torus", "disc-quad",     "double-torus-qd",
-    "eight-qd",          "eight",         "fertility-qd",  "fertility",
-    "gargoyle-quad",     "gargoyle",      "half-torus-qd", "half-torus",
-    "horse-quad",        "icosphere-npm", "man",           "mannequin",
-    "pipes-open-qd",     "pipes-open",    "rockerarm-10k", "rockerarm-qd",
-    "rockerarm",         "sphere-qd",     "sphere-uv-npm", "sphere",
-    "split-1-2-open",    "teddy-quad",    "torus-npm",     "torus-qd",
-    "torus-quad-coarse", "torus"};
-
-// The target sizes: mean course and wale lengths within 5% of the target,
+// The stitch sizes: mean course and wale lengths within 5% of the target,
 // 90% of each within 15%, stitches within 10% of area / (course x wale).
 struct Limits {
   double mean = 0.05;         // |mean / target - 1| at most
@@ -61,72 +38,15 @@ struct Meshed {
   StitchMeshResult result;
 };
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-
-std::optional<PolygonMesh> load_shared(const std::filesystem::path& file) {
-  knitout::DiagnosticSink sink;
-  std::optional<PolygonMesh> mesh = load_mesh(file.string(), {}, sink);
-  EXPECT_TRUE(mesh) << file;
-  return mesh;
-}
-
-LabelledDisc cut_shared(const std::filesystem::path& file) {
-  std::optional<PolygonMesh> mesh = load_shared(file);
-  if (!mesh) return {};
-  const Vec3 size = bounding_box_size(*mesh);
-  for (Vec3& p : mesh->positions) p *= 100.0 / size.maxCoeff();
-  const bool quad_input = is_quad_dominant(*mesh);
-  ProxyResult proxy = make_proxy(*mesh, ProxyParams{});
-  // Every triangle input is remeshed along its field (no fallback to
-  // pairing triangles).
-  EXPECT_EQ(proxy.method, quad_input ? "input" : "instant-meshes") << file << proxy.remesh_failure;
-  // No two proxy vertices at one point (a pinch split by the remesher is
-  // pulled apart): the wearability stage welds the cut mesh's two sides by
-  // position, which must give back this surface.
-  {
-    std::vector<Vec3> points = proxy.mesh.positions;
-    std::vector<std::vector<int>> faces = proxy.mesh.faces;
-    weld_vertices(points, faces, 1e-9 * 100.0 * std::sqrt(3.0));
-    EXPECT_EQ(points.size(), proxy.mesh.positions.size()) << file << ": coincident proxy vertices";
-  }
-  // No quad of nil area is left where the lattice folded (each would put a
-  // needle-thin spike into the cut boundary).
-  if (!quad_input) {
-    PolygonMesh welded = proxy.mesh;
-    EXPECT_EQ(collapse_folded_quads(welded, RemeshParams{}.fold_ratio), 0)
-        << file << ": folded quads left in the proxy";
-  }
-  const CutMesh cut = cut_surface(HalfedgeMesh(std::move(proxy.mesh)), CutParams{});
-  LabelledDisc disc = labelled_disc(cut);
-  EXPECT_TRUE(check_disc(disc).empty()) << file;
-  return disc;
-}
-
-// One cut per mesh for the whole run (cutting is the slow part).
+// One read of each cut per process (a test runs its mesh's cases in one).
 const LabelledDisc& shared_disc(const std::filesystem::path& shared, const std::string& name) {
   static std::map<std::string, LabelledDisc> discs;
   auto it = discs.find(name);
   if (it == discs.end()) {
-    it = discs.emplace(name, cut_shared(shared / "meshes" / (name + ".obj"))).first;
+    const std::optional<Cut> cut = shared_cuts::read_shared_cut(shared, name);
+    it = discs.emplace(name, cut ? labelled_disc(cut->mesh) : LabelledDisc{}).first;
   }
   return it->second;
-}
-
-// Why mesh `name` is skipped in this build: triangle inputs, which the cut
-// stage remeshes, are too slow under the sanitizers (the strict build checks
-// them).
-std::optional<std::string> too_slow_here(const std::filesystem::path& shared,
-                                         const std::string& name) {
-  if (!kSanitized) return std::nullopt;
-  const std::optional<PolygonMesh> input = load_shared(shared / "meshes" / (name + ".obj"));
-  if (!input || is_quad_dominant(*input)) return std::nullopt;
-  return name +
-         " is triangle input, which the cut stage remeshes (too slow under the "
-         "sanitizers); the strict build checks it";
 }
 
 // Valid faces only, one disc, the cut mesh's boundary.
@@ -159,33 +79,14 @@ void expect_sizes(const Meshed& m, const Limits& limits) {
             << f.faces / expected << "\n";
 }
 
-std::string test_name(const ::testing::TestParamInfo<std::string>& param_info) {
-  std::string name = param_info.param;
-  for (char& c : name) {
-    if (c == '-') c = '_';
-  }
-  return name;
-}
-
-TEST(StitchMeshSharedListTest, ListsEveryMesh) {
-  WEARKNIT_REQUIRE_SHARED(shared);
-  std::set<std::string> on_disk;
-  for (const auto& entry : std::filesystem::directory_iterator(shared / "meshes")) {
-    if (entry.path().extension() == ".obj") on_disk.insert(entry.path().stem().string());
-  }
-  EXPECT_EQ(on_disk, std::set<std::string>(kMeshes.begin(), kMeshes.end()));
-}
-
-// The cut mesh of the shared mesh named by the parameter, or a skip that
-// says why there is none in this build.
+// The cut mesh of the shared mesh named by the parameter.
 class SharedDiscTest : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
     WEARKNIT_REQUIRE_SHARED(shared);
-    if (const std::optional<std::string> why = too_slow_here(shared, GetParam()))
-      GTEST_SKIP() << *why;
     disc_ = &shared_disc(shared, GetParam());
     ASSERT_FALSE(disc_->faces.empty());
+    ASSERT_TRUE(check_disc(*disc_).empty()) << GetParam() << ": the cut is not a disc";
   }
   const LabelledDisc& disc() const { return *disc_; }
 
@@ -195,9 +96,8 @@ class SharedDiscTest : public ::testing::TestWithParam<std::string> {
 
 class StitchMeshSharedTest : public SharedDiscTest {};
 
-// A valid stitch mesh of the target sizes, with the default options (rules
-// of thumb on).
-TEST_P(StitchMeshSharedTest, IsAValidDiscOfTheTargetSizes) {
+// With the default options (rules of thumb on).
+TEST_P(StitchMeshSharedTest, IsAValidDiscOfTheStitchSizes) {
   Meshed m;
   m.disc = disc();
   m.result = make_stitch_mesh(m.disc, StitchMeshParams{});
@@ -205,12 +105,13 @@ TEST_P(StitchMeshSharedTest, IsAValidDiscOfTheTargetSizes) {
   expect_sizes(m, Limits{});
 }
 
-INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedTest, ::testing::ValuesIn(kMeshes), test_name);
+INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedTest,
+                         ::testing::ValuesIn(shared_cuts::mesh_names()), shared_cuts::test_name);
 
 // Other gauges: stitches much coarser than the default (a chunky machine on a
 // small object: a row can be as tall as a feature of the cut), flat ones
 // (course four times the wale) and tall ones. The stitch mesh must stay
-// valid; the target sizes are for the default gauge only. At these sizes rows
+// valid; Limits holds for the default gauge only. At these sizes rows
 // begin and end at tips of the cut, and strips need the handling that
 // docs/stitch-mesh.md, "Other gauges", lists (each size made one of them
 // fail on some mesh without it).
@@ -230,8 +131,8 @@ TEST_P(StitchMeshSharedGaugeTest, CoarseFlatAndTallStitchesGiveAValidDisc) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedGaugeTest, ::testing::ValuesIn(kMeshes),
-                         test_name);
+INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedGaugeTest,
+                         ::testing::ValuesIn(shared_cuts::mesh_names()), shared_cuts::test_name);
 
 // A cut mesh meshed with the defaults and with `other`, both valid.
 std::pair<Meshed, Meshed> defaults_and(const LabelledDisc& disc, const StitchMeshParams& other) {
@@ -247,8 +148,8 @@ std::pair<Meshed, Meshed> defaults_and(const LabelledDisc& disc, const StitchMes
 
 // Saddles of the row time held on a level (docs/stitch-mesh.md, step 2):
 // on these two cut meshes, left where the fit put them, they leave a fan of
-// wale sides across the surface and the wale mean misses its target (within
-// 5% of wale_mm); held, the fan is gone.
+// wale sides across the surface and the wale mean misses its Limits;
+// held, the fan is gone.
 class StitchMeshSharedSaddleTest : public SharedDiscTest {};
 
 TEST_P(StitchMeshSharedSaddleTest, SaddlesHeldOnALevelLeaveNoFan) {
@@ -268,7 +169,7 @@ TEST_P(StitchMeshSharedSaddleTest, SaddlesHeldOnALevelLeaveNoFan) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedSaddleTest,
-                         ::testing::Values("teddy-quad", "half-torus"), test_name);
+                         ::testing::Values("teddy-quad", "half-torus"), shared_cuts::test_name);
 
 // The rules of thumb (the default) leave fewer unstable configurations than
 // sizes alone, and the stitch mesh stays valid either way.
@@ -289,7 +190,8 @@ TEST_P(StitchMeshSharedRulesTest, RulesOfThumbLeaveFewerUnstableShapings) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, StitchMeshSharedRulesTest,
-                         ::testing::Values("disc-quad", "torus-qd", "bunny-qd"), test_name);
+                         ::testing::Values("disc-quad", "torus-qd", "bunny-qd"),
+                         shared_cuts::test_name);
 
 }  // namespace
 }  // namespace planner

@@ -29,8 +29,7 @@ struct Verdict {
 };
 
 std::vector<Verdict> read_verdicts() {
-  std::ifstream in(std::filesystem::path(WEARKNIT_SOURCE_DIR) /
-                   "tests/simulators/corpus_verdicts.tsv");
+  std::ifstream in(wearknit::test::source_dir() / "tests/simulators/corpus_verdicts.tsv");
   EXPECT_TRUE(in) << "corpus_verdicts.tsv missing";
   std::vector<Verdict> out;
   std::string line;
