@@ -40,7 +40,9 @@ T need(std::optional<T> value, const knitout::DiagnosticSink& sink, const fs::pa
 }
 
 // Two ids that are both known and differ (0: a folder made by hand).
-bool differ(std::uint64_t a, std::uint64_t b) { return a != 0 && b != 0 && a != b; }
+bool differ(std::uint64_t a, std::uint64_t b) {
+  return a != 0 && b != 0 && a != b;
+}
 
 // The cut-arcs (ids, lengths) into m.arcs with their labels when the folder
 // has wearability.json, and where each runs through the proxy, by id.
@@ -154,7 +156,8 @@ void load(Model& m, const fs::path& dir) {
   m.wale_seams = std::move(schedule.wale_seams);
   index_faces(m);
   const std::map<int, ArcLine> lines = arcs_of(m, cut, labels);
-  std::vector<Seam> cut_seams = schedule_cut_seams(m, schedule.schedule_cuts, dir / "schedule.json");
+  std::vector<Seam> cut_seams =
+      schedule_cut_seams(m, schedule.schedule_cuts, dir / "schedule.json");
   std::vector<Seam> wale = wale_seams(m);
   ArcSeams arcs = arc_seams(m, arc_of_key, lines);
   number_seams(m, std::move(cut_seams), std::move(wale), std::move(arcs));

@@ -277,9 +277,9 @@ TEST(AssemblyTest, MissingOrCorruptFilesGiveAClearErrorAndWriteNothing) {
   write_file(cut, cut_text.substr(0, cut_text.size() / 2));
   r = run_wearknit("assembly " + d);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err.rfind(cut.string() + ": error: [A002] cannot be read (run wearknit cut again): ",
-                        0),
-            0u)
+  EXPECT_EQ(
+      r.err.rfind(cut.string() + ": error: [A002] cannot be read (run wearknit cut again): ", 0),
+      0u)
       << r.err;
   EXPECT_NE(r.err.find("[P021]"), std::string::npos) << r.err;
   EXPECT_TRUE(guide_files(dir).empty());
@@ -303,10 +303,10 @@ TEST(AssemblyTest, MissingOrCorruptFilesGiveAClearErrorAndWriteNothing) {
   write_file(layout, "[1, 2");
   r = run_wearknit("assembly " + d);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err.rfind(schedule.string() +
-                            ": error: [A002] cannot be read (run wearknit schedule again): ",
-                        0),
-            0u)
+  EXPECT_EQ(
+      r.err.rfind(
+          schedule.string() + ": error: [A002] cannot be read (run wearknit schedule again): ", 0),
+      0u)
       << r.err;
   EXPECT_NE(r.err.find(layout.string()), std::string::npos) << r.err;
   EXPECT_TRUE(guide_files(dir).empty());
