@@ -110,6 +110,18 @@ class QuietOpenMesh {
   QuietOpenMesh& operator=(const QuietOpenMesh&) = delete;
 };
 
+// A polygon soup from one OpenMesh read (`read(importer, options)`), with
+// OpenMesh's own messages kept quiet; nullopt when the read fails.
+template <typename Read>
+std::optional<PolygonMesh> import_soup(Read read) {
+  PolygonMesh mesh;
+  SoupImporter importer(mesh);
+  OpenMesh::IO::Options options;
+  QuietOpenMesh quiet;
+  if (!read(importer, options)) return std::nullopt;
+  return mesh;
+}
+
 std::string lower(std::string_view text) {
   std::string out(text);
   std::transform(out.begin(), out.end(), out.begin(),
@@ -182,18 +194,11 @@ std::optional<PolygonMesh> read_polygon_soup(const std::string& path,
     sink.error(path, 0, 0, "P001", "cannot open file");
     return std::nullopt;
   }
-  PolygonMesh mesh;
-  SoupImporter importer(mesh);
-  OpenMesh::IO::Options options;
-  bool ok = false;
-  {
-    QuietOpenMesh quiet;
-    ok = OpenMesh::IO::IOManager().read(path, importer, options);
-  }
-  if (!ok) {
+  auto mesh = import_soup([&](SoupImporter& importer, OpenMesh::IO::Options& options) {
+    return OpenMesh::IO::IOManager().read(path, importer, options);
+  });
+  if (!mesh)
     sink.error(path, 0, 0, "P001", "cannot read the file as " + ext + " (malformed or truncated)");
-    return std::nullopt;
-  }
   return mesh;
 }
 
@@ -205,18 +210,10 @@ std::optional<PolygonMesh> read_polygon_soup(std::istream& in, std::string_view 
     sink.error(source, 0, 0, "P001", "cannot read a mesh in format '" + ext + "'");
     return std::nullopt;
   }
-  PolygonMesh mesh;
-  SoupImporter importer(mesh);
-  OpenMesh::IO::Options options;
-  bool ok = false;
-  {
-    QuietOpenMesh quiet;
-    ok = OpenMesh::IO::IOManager().read(in, "." + ext, importer, options);
-  }
-  if (!ok) {
-    sink.error(source, 0, 0, "P001", "cannot read the stream as " + ext);
-    return std::nullopt;
-  }
+  auto mesh = import_soup([&](SoupImporter& importer, OpenMesh::IO::Options& options) {
+    return OpenMesh::IO::IOManager().read(in, "." + ext, importer, options);
+  });
+  if (!mesh) sink.error(source, 0, 0, "P001", "cannot read the stream as " + ext);
   return mesh;
 }
 
