@@ -9,10 +9,15 @@ cd "$(dirname "$0")/.."
 kind=${1:-release}
 shift || true
 jobs=${WEARKNIT_JOBS:-$(nproc)}
+# The strict and sanitizer builds keep line tables and function names only
+# (-g1): enough for backtraces, sanitizer reports and perf, and a quarter
+# less compile time than full debug information (docs/benchmarks.md).
 case "$kind" in
   release)  dir=build-release; opts=(-DCMAKE_BUILD_TYPE=Release -DWEARKNIT_TESTS=OFF -DWEARKNIT_BENCH=OFF) ;;
-  strict)   dir=build;         opts=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DWEARKNIT_WERROR=ON) ;;
-  sanitize) dir=build-asan;    opts=(-DCMAKE_BUILD_TYPE=Debug -DWEARKNIT_WERROR=ON -DWEARKNIT_SANITIZE=ON -DWEARKNIT_BENCH=OFF) ;;
+  strict)   dir=build;         opts=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DWEARKNIT_WERROR=ON
+                                     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG") ;;
+  sanitize) dir=build-asan;    opts=(-DCMAKE_BUILD_TYPE=Debug -DWEARKNIT_WERROR=ON -DWEARKNIT_SANITIZE=ON -DWEARKNIT_BENCH=OFF
+                                     "-DCMAKE_CXX_FLAGS_DEBUG=-g1") ;;
   *) echo "usage: scripts/build.sh [release|strict|sanitize]" >&2; exit 2 ;;
 esac
 generator=()
