@@ -8,10 +8,10 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
-#include <thread>
 
 #include "knitout/output_file.hpp"
 #include "planner/schedule/knitout_emit.hpp"
+#include "simulators/cloth/parallel.hpp"
 #include "tests/planner/schedule_fixtures.hpp"
 
 namespace {
@@ -29,7 +29,7 @@ void bm_schedule(benchmark::State& state) {
     benchmark::DoNotOptimize(s.cuts);
   }
   state.counters["stitches"] = static_cast<double>(cover().faces.size());
-  state.counters["threads"] = std::max(1u, std::thread::hardware_concurrency());
+  state.counters["threads"] = cloth::resolve_threads(params.threads);
 }
 
 void bm_schedule_and_write(benchmark::State& state, planner::StitchPattern pattern) {

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #include "backends/dat/passes.hpp"
 #include "backends/dat/raster.hpp"
@@ -13,6 +12,7 @@
 #include "simulators/bed/bed_view.hpp"
 #include "simulators/bed/machine.hpp"
 #include "simulators/bed/profile.hpp"
+#include "simulators/cloth/parallel.hpp"
 
 namespace planner {
 
@@ -84,8 +84,8 @@ std::optional<ScheduleOutcome> schedule_stitches(const StitchMeshFile& stitches,
   outcome.params = params;
   outcome.stitch_mesh_id = stitches.id;
   outcome.cut_id = stitches.cut_id;
-  outcome.threads = params.schedule.threads > 0 ? static_cast<unsigned>(params.schedule.threads)
-                                                : std::max(1u, std::thread::hardware_concurrency());
+  // The trials' threads as schedule() resolves them (OMP_NUM_THREADS, else every core).
+  outcome.threads = static_cast<unsigned>(cloth::resolve_threads(params.schedule.threads));
   std::vector<EmittedPiece> emitted;
   try {
     outcome.schedule = schedule(stitches.mesh, params.schedule);
