@@ -1,3 +1,4 @@
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -78,7 +79,17 @@ json labels_json(const CutMesh& cut) {
           {"cut_mesh_vertex_source", cut.disc_source}};
 }
 
+// {"-1": a, "+1": b, ...}: how many vertices have each index.
+json by_index_json(const FieldSingularities& s) {
+  json counts = json::object();
+  for (const auto& [index, count] : s.by_index)
+    counts[(index > 0 ? "+" : "") + std::to_string(index)] = count;
+  return counts;
+}
+
 json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
+  const FieldSingularities q = proxy_singularities(cut);
+  const FieldReport& f = r.field;
   return {{"format", "wearknit-cut-report 1"},
           {"input",
            {{"file", r.input},
@@ -99,7 +110,20 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
             {"samples", r.samples},
             {"holes_filled", r.holes_filled},
             {"folds_removed", r.folds_removed},
-            {"remesh_attempts", r.remesh_attempts}}},
+            {"remesh_attempts", r.remesh_attempts},
+            {"irregular_vertices", q.count},
+            {"singular_vertices", cut.labels.singular_vertices.size()},
+            {"index_sum", q.index_sum},
+            {"by_index", by_index_json(q)}}},
+          {"field",
+           {{"edge_mm", f.edge_mm},
+            {"faces", f.faces},
+            {"euler_characteristic", f.euler_characteristic},
+            {"boundary_loops", f.boundary_loops},
+            {"singularities", f.singularities.count},
+            {"index_sum", f.singularities.index_sum},
+            {"by_index", by_index_json(f.singularities)},
+            {"iterations", f.iterations}}},
           {"params",
            {{"seed", r.params.seed},
             {"cs", r.params.cs},
@@ -119,8 +143,9 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
           {"time_s",
            {{"load", r.load_seconds},
             {"proxy", r.proxy_seconds},
+            {"field", r.field_seconds},
             {"cut", r.cut_seconds},
-            {"total", r.load_seconds + r.proxy_seconds + r.cut_seconds}}}};
+            {"total", r.load_seconds + r.proxy_seconds + r.field_seconds + r.cut_seconds}}}};
 }
 
 std::string obj_text(const PolygonMesh& mesh, std::string_view header) {
@@ -151,6 +176,22 @@ CutReport report_from_json(const json& r) {
   report.holes_filled = proxy.value("holes_filled", 0);
   report.folds_removed = proxy.value("folds_removed", 0);
   report.remesh_attempts = proxy.value("remesh_attempts", 0);
+  const json field = r.value("field", json::object());
+  report.field.edge_mm = field.value("edge_mm", 0.0);
+  report.field.faces = field.value("faces", 0);
+  report.field.euler_characteristic = field.value("euler_characteristic", 0);
+  report.field.boundary_loops = field.value("boundary_loops", 0);
+  report.field.singularities.count = field.value("singularities", 0);
+  report.field.singularities.index_sum = field.value("index_sum", 0);
+  const json by_index = field.value("by_index", json::object());
+  for (const auto& [key, count] : by_index.items()) {
+    // Keys are indices ("-1", "+1"); another key is not a count of ours.
+    char* end = nullptr;
+    const long index = std::strtol(key.c_str(), &end, 10);
+    if (!key.empty() && *end == '\0')
+      report.field.singularities.by_index[static_cast<int>(index)] = count.get<int>();
+  }
+  report.field.iterations = field.value("iterations", 0);
   const json params = r.value("params", json::object());
   report.params.seed = params.value("seed", report.params.seed);
   report.params.cs = params.value("cs", report.params.cs);
@@ -161,6 +202,7 @@ CutReport report_from_json(const json& r) {
   const json time = r.value("time_s", json::object());
   report.load_seconds = time.value("load", 0.0);
   report.proxy_seconds = time.value("proxy", 0.0);
+  report.field_seconds = time.value("field", 0.0);
   report.cut_seconds = time.value("cut", 0.0);
   return report;
 }

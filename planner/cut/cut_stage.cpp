@@ -1,10 +1,14 @@
 #include "planner/cut/cut_stage.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
+#include "planner/common/index.hpp"
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
 
@@ -53,6 +57,20 @@ Cut cut_garment(const PolygonMesh& garment, const CutStageParams& params) {
   report.remesh_failure = proxy.remesh_failure;
   report.proxy_seconds = seconds_since(start);
 
+  // The field at the proxy's scale: detail far below an edge of Q, which
+  // Q cannot follow, makes no singularity there either.
+  start = std::chrono::steady_clock::now();
+  CrossFieldParams field_params;
+  field_params.edge_mm = proxy.edge_mm;
+  const CrossField field = smoothest_cross_field(garment, field_params);
+  report.field.edge_mm = field_params.edge_mm;
+  report.field.faces = static_cast<int>(field.surface.faces.size());
+  report.field.euler_characteristic = field.euler_characteristic;
+  report.field.boundary_loops = field.boundary_loops;
+  report.field.singularities = field_singularities(field);
+  report.field.iterations = field.iterations;
+  report.field_seconds = seconds_since(start);
+
   start = std::chrono::steady_clock::now();
   result.mesh = checked_cut(HalfedgeMesh(std::move(proxy.mesh)), params.cut);
   report.cut_seconds = seconds_since(start);
@@ -69,6 +87,34 @@ Cut recut(const Cut& cut, std::uint64_t seed) {
   return result;
 }
 
+FieldSingularities proxy_singularities(const CutMesh& cut) {
+  FieldSingularities s;
+  for (const int v : cut.labels.irregular_vertices) {
+    const int index = 4 - cut.labels.corner_count[at(v)];
+    ++s.count;
+    s.index_sum += index;
+    ++s.by_index[index];
+  }
+  return s;
+}
+
+namespace {
+
+// "+1: 8, -1: 2": the count of each index, the most frequent first.
+std::string by_index_text(const FieldSingularities& s) {
+  std::vector<std::pair<int, int>> counts;
+  for (const auto& [index, count] : s.by_index) counts.emplace_back(-count, index);
+  std::sort(counts.begin(), counts.end());
+  std::string text;
+  for (const auto& [negative_count, index] : counts) {
+    if (!text.empty()) text += ", ";
+    text += (index > 0 ? "+" : "") + std::to_string(index) + ": " + std::to_string(-negative_count);
+  }
+  return text.empty() ? "none" : text;
+}
+
+}  // namespace
+
 std::string describe(const Cut& cut) {
   const CutReport& r = cut.report;
   const CutSummary s = summarize(cut.mesh);
@@ -77,11 +123,22 @@ std::string describe(const Cut& cut) {
        << r.input_size_mm.y() << " x " << r.input_size_mm.z() << " mm; proxy "
        << cut.mesh.proxy.num_faces() << " faces"
        << (r.remeshed ? " (remeshed: " + r.proxy_method + ")" : std::string(" (input as is)"))
-       << "\n"
+       << "\n";
+  const FieldReport& f = r.field;
+  const FieldSingularities q = proxy_singularities(cut.mesh);
+  if (f.faces == 0) {
+    text << "field: not computed";
+  } else {
+    text << "field: " << f.singularities.count << " singularities ("
+         << by_index_text(f.singularities) << "; index sum " << f.singularities.index_sum
+         << ", Euler characteristic " << f.euler_characteristic << ") at " << f.edge_mm << " mm";
+  }
+  text << "; Q: " << q.count << " irregular vertices (" << by_index_text(q) << "), "
+       << cut.mesh.labels.singular_vertices.size() << " singular\n"
        << "cut: " << s.irregular_vertices << " irregular vertices, " << s.cut_edges
        << " cut edges in " << s.arcs << " arcs, " << s.cut_length_mm << " mm, "
        << s.overlapping_faces << " overlapping faces, " << std::setprecision(3)
-       << r.proxy_seconds + r.cut_seconds << " s\n";
+       << r.proxy_seconds + r.field_seconds + r.cut_seconds << " s\n";
   return text.str();
 }
 

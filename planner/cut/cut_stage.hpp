@@ -9,9 +9,22 @@
 
 #include "planner/cut/cut.hpp"
 #include "planner/mesh/mesh.hpp"
+#include "planner/proxy/cross_field.hpp"
 #include "planner/proxy/proxy.hpp"
 
 namespace planner {
+
+// The smoothest cross field of the garment at the proxy's scale
+// (proxy/cross_field.hpp): the singularities the surface needs, to set
+// beside Q's irregular vertices. Reported only; Q is not built from it.
+struct FieldReport {
+  double edge_mm = 0.0;  // the scale: the surface was brought to edges of about this
+  int faces = 0;         // triangles of that surface
+  int euler_characteristic = 0;
+  int boundary_loops = 0;
+  FieldSingularities singularities;
+  int iterations = 0;  // inverse power iterations
+};
 
 // What the stage says about a run besides the CutMesh itself.
 struct CutReport {
@@ -31,10 +44,12 @@ struct CutReport {
   int remesh_attempts = 0;  // extractions tried, at spacings a few percent apart
   std::string proxy_method = "input";
   std::string remesh_failure;
+  FieldReport field;
   CutParams params;
   int picture_px = 0;  // the size of cuts-3d.png's views as cut.json records it; 0 = not drawn
   double load_seconds = 0.0;
   double proxy_seconds = 0.0;
+  double field_seconds = 0.0;
   double cut_seconds = 0.0;
 };
 
@@ -59,8 +74,13 @@ struct CutPictures {
   int panel_px = 600;  // one of the 2x2 views of cuts-3d.png; layout-2d.png is 5/3 of it
 };
 
-// The stage's summary, two lines as `wearknit cut` prints them: the input
-// and proxy, then the cut.
+// Q's irregular vertices (interior, corner count other than 4) by their
+// index in quarter turns, 4 minus their corners (§4.1): the figures to set
+// beside the field's singularities. On a closed Q the indices sum to 4χ.
+FieldSingularities proxy_singularities(const CutMesh& cut);
+
+// The stage's summary, three lines as `wearknit cut` prints them: the input
+// and proxy, the field's singularities beside Q's, then the cut.
 std::string describe(const Cut& cut);
 
 }  // namespace planner
