@@ -11,7 +11,7 @@ void add_cut_options(po::options_description& options, CutOptions& cut) {
   options.add_options()("cs", po::value<double>(&p.cs)->default_value(1000.0),
                         "straightness weight c_s (motorcycle-graph edges, §4.2)")(
       "co", po::value<double>(&p.co)->default_value(1.0), "overlap weight c_o (§4.2)")(
-      "vanishing", po::value<std::string>(&cut.vanishing)->default_value("optimal"),
+      "vanishing", po::value<std::string>(&cut.vanishing)->default_value("acute"),
       "vanishing corner of each triangle: optimal (the corners that leave the fewest corners "
       "off four around interior vertices, the most acute among those), acute (its most acute "
       "corner, §4.1) or regular (a corner within --vanishing-slack of it that leaves fewer "

@@ -15,7 +15,7 @@ namespace wearknit::cli {
 
 struct CutOptions {
   planner::CutStageParams params;
-  std::string vanishing = "optimal";
+  std::string vanishing = "acute";
   double vanishing_slack_deg = 30.0;
 };
 void add_cut_options(boost::program_options::options_description& options, CutOptions& cut);

@@ -47,7 +47,7 @@ struct FieldLabels {
 //     the same sum; triangles are swept until none moves.
 struct VanishingRule {
   enum class Method : std::uint8_t { Optimal, Acute, Regular };
-  Method method = Method::Optimal;
+  Method method = Method::Acute;
   double slack_deg = 0.0;  // Regular only
 };
 // The method's name as `--vanishing` and cut.json spell it: optimal, acute or regular.

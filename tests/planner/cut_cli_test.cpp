@@ -121,13 +121,13 @@ TEST(CutCliTest, VanishingOptionIsCheckedAndRecorded) {
   WEARKNIT_REQUIRE_SHARED(shared);
   const auto dir = make_temp_dir("cut_cli_vanishing");
   const std::string mesh = (shared / "meshes" / "torus-qd.obj").string();
-  ASSERT_EQ(run_wearknit("cut " + mesh + " -o " + (dir / "optimal").string() + " --no-pictures")
+  ASSERT_EQ(run_wearknit("cut " + mesh + " -o " + (dir / "optimal").string() +
+                         " --no-pictures --vanishing optimal")
                 .exit_code,
             0);
-  ASSERT_EQ(run_wearknit("cut " + mesh + " -o " + (dir / "acute").string() +
-                         " --no-pictures --vanishing acute")
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      run_wearknit("cut " + mesh + " -o " + (dir / "acute").string() + " --no-pictures").exit_code,
+      0);
   const auto result = run_wearknit("cut " + mesh + " -o " + (dir / "regular").string() +
                                    " --no-pictures --vanishing regular --vanishing-slack 20");
   ASSERT_EQ(result.exit_code, 0) << result.err;

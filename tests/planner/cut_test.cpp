@@ -333,11 +333,13 @@ TEST(CutTest, EverySharedMeshBecomesOneDisc) {
         EXPECT_TRUE(boundary.count(v)) << file << ": singular vertex " << v << " inside the disc";
       }
     }
-    // The same holds with the other vanishing rules: the most acute corners
-    // (§4.1), and the corners moved one at a time for regularity, which
-    // never leaves more irregular vertices than the most acute ones. The
-    // default rule's corners are the most regular of the three.
-    const CutMesh optimal_cut = cut_surface(q, cut_params(1));
+    // The same holds with the other vanishing rules: the optimal corners,
+    // the most regular of the three, and the corners moved one at a time for
+    // regularity, which never leaves more irregular vertices than the most
+    // acute ones (§4.1, the default).
+    CutParams optimal = cut_params(1);
+    optimal.vanishing.method = VanishingRule::Method::Optimal;
+    const CutMesh optimal_cut = cut_surface(q, optimal);
     CutParams acute = cut_params(1);
     acute.vanishing.method = VanishingRule::Method::Acute;
     CutParams regular = cut_params(1);
@@ -345,7 +347,7 @@ TEST(CutTest, EverySharedMeshBecomesOneDisc) {
     regular.vanishing.slack_deg = 30.0;
     const CutMesh acute_cut = cut_surface(q, acute);
     const CutMesh cut = cut_surface(q, regular);
-    for (const CutMesh* other : {&acute_cut, &cut}) {
+    for (const CutMesh* other : {&optimal_cut, &cut}) {
       const auto problems = verify_cut(*other);
       EXPECT_TRUE(problems.empty()) << file << ": " << problems.front();
       EXPECT_EQ(HalfedgeMesh(other->disc).euler_characteristic(), 1) << file;

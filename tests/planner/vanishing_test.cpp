@@ -117,8 +117,9 @@ TEST(VanishingTest, TheSplitCellComesOutRegularWhereTheAcuteRuleLeavesTwoIrregul
   // face 9 at c (45 + 40.2 degrees against 39.8 + 50.7).
   EXPECT_EQ(vanishing_vertex(q, vanishing, 8), 5);
   EXPECT_EQ(vanishing_vertex(q, vanishing, 9), 10);
-  // The default rule of the cut is this one.
-  EXPECT_EQ(label_field(q).vanishing_corner, vanishing);
+  VanishingRule optimal;
+  optimal.method = VanishingRule::Method::Optimal;
+  EXPECT_EQ(label_field(q, optimal).vanishing_corner, vanishing);
 }
 
 TEST(VanishingTest, AmongEquallyRegularChoicesTheSharperCornersVanish) {
