@@ -2,7 +2,8 @@
 # Reproduces Fig. 5 of the paper (§4.2): the cut of a quad-dominant proxy
 # with four edge prioritisations -- random (c_s = 0, c_o = 0), straightness
 # only (c_s = 1000, c_o = 0), overlap only (c_s = 0, c_o = 1) and both
-# (c_s = 1000, c_o = 1) -- on bunny-qd and fertility-qd. Prints a Markdown
+# (c_s = 1000, c_o = 1) -- on bunny-qd and fertility-qd, with the paper's
+# vanishing corners (--vanishing acute, §4.1). Prints a Markdown
 # table (means over seeds 1..5, and seed 1 alone) and writes the seed-1
 # pictures to docs/figures/fig5/.
 # usage: bench/fig5.sh   (release build in $WEARKNIT_BENCH_BUILD, default build-bench; needs ../shared)
@@ -25,12 +26,12 @@ for mesh in bunny-qd fertility-qd; do
       out="$work/$mesh-$name-$seed"
       if [ "$seed" = 1 ]; then
         "$build/apps/wearknit/wearknit" cut "$shared/meshes/$mesh.obj" -o "$out" --cs "$cs" --co "$co" \
-          --units "$units" --seed "$seed" --picture-px 300 -q
+          --units "$units" --seed "$seed" --vanishing acute --picture-px 300 -q
         cp "$out/cuts-3d.png" "$figures/$mesh-$name-3d.png"
         cp "$out/layout-2d.png" "$figures/$mesh-$name-2d.png"
       else
         "$build/apps/wearknit/wearknit" cut "$shared/meshes/$mesh.obj" -o "$out" --cs "$cs" --co "$co" \
-          --units "$units" --seed "$seed" --no-pictures -q
+          --units "$units" --seed "$seed" --vanishing acute --no-pictures -q
       fi
     done
   done

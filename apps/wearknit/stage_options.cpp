@@ -12,8 +12,10 @@ void add_cut_options(po::options_description& options, CutOptions& cut) {
                         "straightness weight c_s (motorcycle-graph edges, §4.2)")(
       "co", po::value<double>(&p.co)->default_value(1.0), "overlap weight c_o (§4.2)")(
       "vanishing", po::value<std::string>(&cut.vanishing)->default_value("acute"),
-      "vanishing corner of each triangle: acute (its most acute corner, §4.1) or regular "
-      "(a corner within --vanishing-slack of it that leaves fewer irregular vertices)")(
+      "vanishing corner of each triangle: optimal (the corners that leave the fewest corners "
+      "off four around interior vertices, the most acute among those), acute (its most acute "
+      "corner, §4.1) or regular (a corner within --vanishing-slack of it that leaves fewer "
+      "irregular vertices)")(
       "vanishing-slack", po::value<double>(&cut.vanishing_slack_deg)->default_value(30.0),
       "degrees a regular vanishing corner may be wider than the most acute one")(
       "proxy-edge-mm", po::value<double>(&cut.params.proxy.proxy_edge_mm)->default_value(0.0),
@@ -24,11 +26,11 @@ std::string check_cut_options(CutOptions& cut) {
   planner::CutParams& p = cut.params.cut;
   if (!(cut.params.proxy.proxy_edge_mm >= 0.0) || !(p.cs >= 0.0) || !(p.co >= 0.0))
     return "--proxy-edge-mm, --cs and --co must not be negative";
-  if (cut.vanishing != "acute" && cut.vanishing != "regular")
-    return "--vanishing takes acute or regular, not '" + cut.vanishing + "'";
+  const auto method = planner::vanishing_method(cut.vanishing);
+  if (!method) return "--vanishing takes optimal, acute or regular, not '" + cut.vanishing + "'";
   if (!(cut.vanishing_slack_deg >= 0.0) || cut.vanishing_slack_deg > 180.0)
     return "--vanishing-slack must be between 0 and 180 degrees";
-  p.vanishing.fewest_irregular = cut.vanishing == "regular";
+  p.vanishing.method = *method;
   p.vanishing.slack_deg = cut.vanishing_slack_deg;
   return {};
 }

@@ -12,6 +12,7 @@
 
 #include "planner/common/index.hpp"
 #include "planner/common/union_find.hpp"
+#include "planner/cut/vanishing.hpp"
 #include "planner/mesh/soup.hpp"
 
 namespace planner {
@@ -201,17 +202,41 @@ std::vector<CutArc> find_arcs(const HalfedgeMesh& q, const FieldLabels& labels,
 
 }  // namespace
 
+const char* vanishing_name(VanishingRule::Method method) {
+  switch (method) {
+    case VanishingRule::Method::Optimal:
+      return "optimal";
+    case VanishingRule::Method::Acute:
+      return "acute";
+    case VanishingRule::Method::Regular:
+      return "regular";
+  }
+  throw std::logic_error("vanishing_name: unknown method");
+}
+
+std::optional<VanishingRule::Method> vanishing_method(std::string_view name) {
+  for (auto method : {VanishingRule::Method::Optimal, VanishingRule::Method::Acute,
+                      VanishingRule::Method::Regular}) {
+    if (name == vanishing_name(method)) return method;
+  }
+  return std::nullopt;
+}
+
 FieldLabels label_field(const HalfedgeMesh& q, const VanishingRule& rule) {
-  FieldLabels labels;
-  labels.vanishing_corner.assign(at(q.num_faces()), -1);
-  std::vector<std::array<bool, 3>> allowed(at(q.num_faces()), {false, false, false});
   for (int f = 0; f < q.num_faces(); ++f) {
     const int n = q.degree(f);
-    if (n == 4) continue;
-    if (n != 3) {
+    if (n != 3 && n != 4) {
       throw std::logic_error("label_field: face " + std::to_string(f) + " has " +
                              std::to_string(n) + " corners (split polygons first)");
     }
+  }
+  if (rule.method == VanishingRule::Method::Optimal) {
+    return labels_with_vanishing(q, optimal_vanishing_corners(q));
+  }
+  std::vector<int> acute_corner(at(q.num_faces()), -1);
+  std::vector<std::array<bool, 3>> allowed(at(q.num_faces()), {false, false, false});
+  for (int f = 0; f < q.num_faces(); ++f) {
+    if (q.degree(f) != 3) continue;
     // §4.1: the most acute corner of a triangle vanishes.
     int best = 0;
     double smallest = 10.0;
@@ -223,17 +248,17 @@ FieldLabels label_field(const HalfedgeMesh& q, const VanishingRule& rule) {
         best = i;
       }
     }
-    labels.vanishing_corner[at(f)] = best;
+    acute_corner[at(f)] = best;
     for (int i = 0; i < 3; ++i) {
       allowed[at(f)][at(i)] = angles[at(i)] <= smallest + rule.slack_deg * std::numbers::pi / 180.0;
     }
   }
-  FieldLabels acute = labels_with_vanishing(q, std::move(labels.vanishing_corner));
-  if (!rule.fewest_irregular) return acute;
-  // Corners around each vertex, not counting vanishing ones; a triangle moves
-  // its vanishing corner to another allowed corner when that brings its three
-  // vertices closer to four corners each (sum of |count - 4| over interior
-  // vertices), until no triangle can.
+  FieldLabels acute = labels_with_vanishing(q, std::move(acute_corner));
+  if (rule.method == VanishingRule::Method::Acute) return acute;
+  // Regular: corners around each vertex, not counting vanishing ones; a
+  // triangle moves its vanishing corner to another allowed corner when that
+  // brings its three vertices closer to four corners each (sum of
+  // |count - 4| over interior vertices), until no triangle can.
   std::vector<int>& count = acute.corner_count;
   std::vector<int>& vanishing = acute.vanishing_corner;
   auto misfit = [&](int v) { return q.is_boundary_vertex(v) ? 0 : std::abs(count[at(v)] - 4); };

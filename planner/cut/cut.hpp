@@ -13,7 +13,9 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "planner/mesh/mesh.hpp"
@@ -24,7 +26,7 @@ namespace planner {
 // §4.1: vanishing corners and irregular vertices of Q (all faces of Q have 3 or 4 corners).
 struct FieldLabels {
   // Per face: the corner index (0-based, in the face's order) of the
-  // vanishing corner of a triangle, its most acute corner; -1 for quads.
+  // vanishing corner of a triangle (VanishingRule says which); -1 for quads.
   std::vector<int> vanishing_corner;
   // Per vertex: corners around it, not counting vanishing corners.
   std::vector<int> corner_count;
@@ -34,14 +36,24 @@ struct FieldLabels {
   // around them exists, so they must end up on the cut.
   std::vector<int> singular_vertices;
 };
-// How the vanishing corner of each triangle is chosen. §4.1 takes the most
-// acute corner. With `fewest_irregular` a triangle may instead vanish at any
-// corner at most `slack_deg` degrees wider than its most acute one, chosen
-// so that fewer interior vertices are irregular (docs/cutting.md).
+// How the vanishing corner of each triangle is chosen (docs/cutting.md,
+// "Choosing the vanishing corners"):
+//   Optimal: the corners that make the sum of |corner count - 4| over Q's
+//     interior vertices the least it can be, the most acute ones among those
+//     (optimal_vanishing_corners, vanishing.hpp); departs from §4.1.
+//   Acute: §4.1, every triangle's most acute corner.
+//   Regular: from the acute corners, a triangle may move to any corner at
+//     most `slack_deg` degrees wider than its most acute one when that lowers
+//     the same sum; triangles are swept until none moves.
 struct VanishingRule {
-  bool fewest_irregular = false;
-  double slack_deg = 0.0;
+  enum class Method : std::uint8_t { Optimal, Acute, Regular };
+  Method method = Method::Acute;
+  double slack_deg = 0.0;  // Regular only
 };
+// The method's name as `--vanishing` and cut.json spell it: optimal, acute or regular.
+const char* vanishing_name(VanishingRule::Method method);
+// The method of that name; nullopt for any other name.
+std::optional<VanishingRule::Method> vanishing_method(std::string_view name);
 FieldLabels label_field(const HalfedgeMesh& q, const VanishingRule& rule = {});
 // The same for given vanishing corners (as read back from labels.json).
 FieldLabels labels_with_vanishing(const HalfedgeMesh& q, std::vector<int> vanishing_corner);

@@ -128,7 +128,7 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
            {{"seed", r.params.seed},
             {"cs", r.params.cs},
             {"co", r.params.co},
-            {"vanishing", r.params.vanishing.fewest_irregular ? "regular" : "acute"},
+            {"vanishing", vanishing_name(r.params.vanishing.method)},
             {"vanishing_slack_deg", r.params.vanishing.slack_deg}}},
           {"irregular_vertices", cut.labels.irregular_vertices},
           {"irregular_vertex_count", s.irregular_vertices},
@@ -196,7 +196,9 @@ CutReport report_from_json(const json& r) {
   report.params.seed = params.value("seed", report.params.seed);
   report.params.cs = params.value("cs", report.params.cs);
   report.params.co = params.value("co", report.params.co);
-  report.params.vanishing.fewest_irregular = params.value("vanishing", "acute") == "regular";
+  // A report with no rule predates the choice: its corners are the acute ones.
+  report.params.vanishing.method = vanishing_method(params.value("vanishing", std::string("acute")))
+                                       .value_or(VanishingRule::Method::Acute);
   report.params.vanishing.slack_deg = params.value("vanishing_slack_deg", 0.0);
   report.picture_px = r.value("picture_px", 0);
   const json time = r.value("time_s", json::object());

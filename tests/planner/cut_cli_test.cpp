@@ -113,7 +113,7 @@ TEST(CutCliTest, UsageErrorsExitTwo) {
 TEST(CutCliTest, VanishingOptionIsCheckedAndRecorded) {
   const auto bad = run_wearknit("cut x.obj -o out --vanishing sharpest");
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_EQ(bad.err, "wearknit cut: --vanishing takes acute or regular, not 'sharpest'\n");
+  EXPECT_EQ(bad.err, "wearknit cut: --vanishing takes optimal, acute or regular, not 'sharpest'\n");
   const auto slack = run_wearknit("cut x.obj -o out --vanishing regular --vanishing-slack -5");
   EXPECT_EQ(slack.exit_code, 2);
   EXPECT_EQ(slack.err, "wearknit cut: --vanishing-slack must be between 0 and 180 degrees\n");
@@ -121,21 +121,32 @@ TEST(CutCliTest, VanishingOptionIsCheckedAndRecorded) {
   WEARKNIT_REQUIRE_SHARED(shared);
   const auto dir = make_temp_dir("cut_cli_vanishing");
   const std::string mesh = (shared / "meshes" / "torus-qd.obj").string();
+  ASSERT_EQ(run_wearknit("cut " + mesh + " -o " + (dir / "optimal").string() +
+                         " --no-pictures --vanishing optimal")
+                .exit_code,
+            0);
   ASSERT_EQ(
       run_wearknit("cut " + mesh + " -o " + (dir / "acute").string() + " --no-pictures").exit_code,
       0);
   const auto result = run_wearknit("cut " + mesh + " -o " + (dir / "regular").string() +
                                    " --no-pictures --vanishing regular --vanishing-slack 20");
   ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto optimal = nlohmann::json::parse(read_file(dir / "optimal" / "report.json"));
   const auto acute = nlohmann::json::parse(read_file(dir / "acute" / "report.json"));
   const auto regular = nlohmann::json::parse(read_file(dir / "regular" / "report.json"));
+  EXPECT_EQ(optimal["params"]["vanishing"], "optimal");
   EXPECT_EQ(acute["params"]["vanishing"], "acute");
   EXPECT_EQ(regular["params"]["vanishing"], "regular");
   EXPECT_NEAR(regular["params"]["vanishing_slack_deg"].get<double>(), 20.0, 1e-9);
   EXPECT_LT(regular["irregular_vertex_count"].get<int>(),
             acute["irregular_vertex_count"].get<int>());
   EXPECT_LT(regular["arcs"].get<int>(), acute["arcs"].get<int>());
-  EXPECT_EQ(regular["disc"]["boundary_loops"], 1);
+  EXPECT_LT(optimal["irregular_vertex_count"].get<int>(),
+            regular["irregular_vertex_count"].get<int>());
+  EXPECT_LT(optimal["arcs"].get<int>(), regular["arcs"].get<int>());
+  for (const auto* report : {&optimal, &acute, &regular}) {
+    EXPECT_EQ((*report)["disc"]["boundary_loops"], 1);
+  }
   std::filesystem::remove_all(dir);
 }
 

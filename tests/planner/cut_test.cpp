@@ -6,6 +6,7 @@
 #include <iostream>
 #include <set>
 
+#include "planner/cut/vanishing.hpp"
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
 #include "planner/proxy/proxy.hpp"
@@ -41,7 +42,9 @@ TEST(LabelsTest, VanishingCornerIsTheMostAcuteCornerOfATriangle) {
   PolygonMesh mesh;
   mesh.positions = {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}};  // corner at vertex 0 is the sharpest
   mesh.faces = {{1, 2, 0}};
-  const FieldLabels labels = label_field(HalfedgeMesh(mesh));
+  VanishingRule acute;
+  acute.method = VanishingRule::Method::Acute;
+  const FieldLabels labels = label_field(HalfedgeMesh(mesh), acute);
   EXPECT_EQ(labels.vanishing_corner[0], 2);  // corner index of vertex 0 in the face
   // Its two sides are opposite: directions d, d+1, d+2 around the face.
   const HalfedgeMesh q(mesh);
@@ -72,7 +75,9 @@ PolygonMesh grid_with_split_cell() {
 
 TEST(LabelsTest, AcuteVanishingCornersCanLeaveAPairOfIrregularVertices) {
   const HalfedgeMesh q(grid_with_split_cell());
-  const FieldLabels labels = label_field(q);
+  VanishingRule acute;
+  acute.method = VanishingRule::Method::Acute;
+  const FieldLabels labels = label_field(q, acute);
   // Both triangles vanish at c = vertex 10: it keeps 3 corners, a = vertex 5 gets 5.
   EXPECT_EQ(labels.irregular_vertices, (std::vector<int>{5, 10}));
   EXPECT_EQ(labels.corner_count[5], 5);
@@ -82,7 +87,7 @@ TEST(LabelsTest, AcuteVanishingCornersCanLeaveAPairOfIrregularVertices) {
 TEST(LabelsTest, RegularVanishingCornersMakeTheSplitCellRegular) {
   const HalfedgeMesh q(grid_with_split_cell());
   VanishingRule rule;
-  rule.fewest_irregular = true;
+  rule.method = VanishingRule::Method::Regular;
   rule.slack_deg = 10.0;
   const FieldLabels labels = label_field(q, rule);
   EXPECT_TRUE(labels.irregular_vertices.empty());
@@ -97,7 +102,7 @@ TEST(LabelsTest, RegularVanishingCornersMakeTheSplitCellRegular) {
   EXPECT_EQ(label_field(q, rule).irregular_vertices.size(), 2u);
   // The cut of either labelling is a valid disc.
   CutParams params;
-  params.vanishing.fewest_irregular = true;
+  params.vanishing.method = VanishingRule::Method::Regular;
   params.vanishing.slack_deg = 10.0;
   const CutMesh cut = cut_surface(q, params);
   const auto problems = verify_cut(cut);
@@ -328,19 +333,31 @@ TEST(CutTest, EverySharedMeshBecomesOneDisc) {
         EXPECT_TRUE(boundary.count(v)) << file << ": singular vertex " << v << " inside the disc";
       }
     }
-    // The same holds with the vanishing corners chosen for regularity, which
-    // never leaves more irregular vertices than the most acute corners.
+    // The same holds with the other vanishing rules: the optimal corners,
+    // the most regular of the three, and the corners moved one at a time for
+    // regularity, which never leaves more irregular vertices than the most
+    // acute ones (§4.1, the default).
+    CutParams optimal = cut_params(1);
+    optimal.vanishing.method = VanishingRule::Method::Optimal;
+    const CutMesh optimal_cut = cut_surface(q, optimal);
+    CutParams acute = cut_params(1);
+    acute.vanishing.method = VanishingRule::Method::Acute;
     CutParams regular = cut_params(1);
-    regular.vanishing.fewest_irregular = true;
+    regular.vanishing.method = VanishingRule::Method::Regular;
     regular.vanishing.slack_deg = 30.0;
-    const CutMesh acute_cut = cut_surface(q, cut_params(1));
+    const CutMesh acute_cut = cut_surface(q, acute);
     const CutMesh cut = cut_surface(q, regular);
-    const auto problems = verify_cut(cut);
-    EXPECT_TRUE(problems.empty()) << file << " regular: " << problems.front();
-    EXPECT_EQ(HalfedgeMesh(cut.disc).euler_characteristic(), 1) << file << " regular";
-    EXPECT_EQ(HalfedgeMesh(cut.disc).count_boundary_loops(), 1) << file << " regular";
+    for (const CutMesh* other : {&optimal_cut, &cut}) {
+      const auto problems = verify_cut(*other);
+      EXPECT_TRUE(problems.empty()) << file << ": " << problems.front();
+      EXPECT_EQ(HalfedgeMesh(other->disc).euler_characteristic(), 1) << file;
+      EXPECT_EQ(HalfedgeMesh(other->disc).count_boundary_loops(), 1) << file;
+    }
     EXPECT_LE(cut.labels.irregular_vertices.size(), acute_cut.labels.irregular_vertices.size())
         << file;
+    const int misfit = corner_misfit(q, optimal_cut.labels.vanishing_corner);
+    EXPECT_LE(misfit, corner_misfit(q, cut.labels.vanishing_corner)) << file;
+    EXPECT_LE(misfit, corner_misfit(q, acute_cut.labels.vanishing_corner)) << file;
     irregular_acute += acute_cut.labels.irregular_vertices.size();
     irregular_regular += cut.labels.irregular_vertices.size();
   }
