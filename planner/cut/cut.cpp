@@ -140,10 +140,21 @@ int out_along(const HalfedgeMesh& q, int w, int e) {
   return q.from(h) == w ? h : q.twin(h);
 }
 
-// Cut-arcs: maximal paths of cut edges that pass straight through regular
-// interior vertices where exactly two cut edges meet.
+// The vertex reached from w by following the cut two edges along edge e
+// (one where the next vertex is a node or the cut does not go on through it).
+int two_edges_along(const HalfedgeMesh& q, const std::vector<std::vector<int>>& incident, int w,
+                    int e) {
+  const int v = q.to(out_along(q, w, e));
+  const auto& list = incident[at(v)];
+  if (list.size() != 2) return v;
+  const int next = list[0] == e ? list[1] : list[0];
+  return q.to(out_along(q, v, next));
+}
+
+// Cut-arcs: maximal paths of cut edges through regular interior vertices
+// where exactly two cut edges meet and the cut turns by at most `turn_deg`.
 std::vector<CutArc> find_arcs(const HalfedgeMesh& q, const FieldLabels& labels,
-                              const std::vector<bool>& cut_edge) {
+                              const std::vector<bool>& cut_edge, double turn_deg) {
   std::vector<std::vector<int>> incident(at(q.num_vertices()));
   for (int e = 0; e < q.num_edges(); ++e) {
     if (!cut_edge[at(e)]) continue;
@@ -151,20 +162,20 @@ std::vector<CutArc> find_arcs(const HalfedgeMesh& q, const FieldLabels& labels,
     incident[at(q.from(h))].push_back(e);
     incident[at(q.to(h))].push_back(e);
   }
-  auto passes_straight = [&](int w) {
+  const double max_turn = turn_deg * std::numbers::pi / 180.0;
+  auto passes_through = [&](int w) {
     const auto& list = incident[at(w)];
     if (list.size() != 2 || q.is_boundary_vertex(w) || labels.corner_count[at(w)] != 4) {
       return false;
     }
-    const int second = out_along(q, w, list[1]);
-    for (int h : straight_continuations(q, labels, w, out_along(q, w, list[0]))) {
-      if (h == second) return true;
-    }
-    return false;
+    const Vec3& p = q.position(w);
+    const Vec3 back = p - q.position(two_edges_along(q, incident, w, list[0]));
+    const Vec3 ahead = q.position(two_edges_along(q, incident, w, list[1])) - p;
+    return angle_between(back, ahead) <= max_turn;
   };
   std::vector<bool> node(at(q.num_vertices()), false);
   for (int v = 0; v < q.num_vertices(); ++v) {
-    node[at(v)] = !incident[at(v)].empty() && !passes_straight(v);
+    node[at(v)] = !incident[at(v)].empty() && !passes_through(v);
   }
   std::vector<bool> used(at(q.num_edges()), false);
   std::vector<CutArc> arcs;
@@ -407,7 +418,7 @@ class PatchGrower {
       if (!in_b_[at(h)] || visited_[at(q_.face(q_.twin(h)))]) continue;
       const double score = score_of(h);
       if (score > entry.score + 1e-9) {  // stale: the grid filled up since it was offered
-        queue_.push({score, rng_(), h});
+        queue_.push({score, ring_of(h), rng_(), h});
         continue;
       }
       expand(h);
@@ -423,10 +434,12 @@ class PatchGrower {
  private:
   struct Entry {
     double score;
+    int ring;  // square growth: the ring of the cell across; else 0
     std::uint64_t key;
     int h;
     bool operator>(const Entry& o) const {
       if (score != o.score) return score > o.score;
+      if (ring != o.ring) return ring > o.ring;
       if (key != o.key) return key > o.key;
       return h > o.h;
     }
@@ -463,13 +476,20 @@ class PatchGrower {
            params_.co * (overlap_score_[at(q_.face(h))] + count);
   }
 
+  // Square growth: the ring around the seed of the cell across h.
+  int ring_of(int h) const {
+    if (!params_.square_growth) return 0;
+    const std::array<int, 2> uv = cell_across(h);
+    return std::max(std::abs(uv[0]), std::abs(uv[1]));
+  }
+
   // Queues the half-edges of f on B that lead to a face not yet reached.
   void offer(int f) {
     for (int i = 0; i < q_.degree(f); ++i) {
       const int h = q_.face_start(f) + i;
       const int t = q_.twin(h);
       if (in_b_[at(h)] && t >= 0 && !visited_[at(q_.face(t))])
-        queue_.push({score_of(h), rng_(), h});
+        queue_.push({score_of(h), ring_of(h), rng_(), h});
     }
   }
 
@@ -548,13 +568,20 @@ class PatchGrower {
 
 }  // namespace
 
-CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params) {
+CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params,
+                    const std::vector<int>* vanishing_corner) {
   CutMesh cut;
   cut.proxy = std::move(proxy);
   const HalfedgeMesh& q = cut.proxy;
   const int nf = q.num_faces();
   if (nf == 0) throw std::logic_error("cut_surface: empty proxy");
-  cut.labels = label_field(q, params.vanishing);
+  if (vanishing_corner != nullptr) {
+    if (vanishing_corner->size() != at(nf))
+      throw std::logic_error("cut_surface: vanishing corners do not match the proxy");
+    cut.labels = labels_with_vanishing(q, *vanishing_corner);
+  } else {
+    cut.labels = label_field(q, params.vanishing);
+  }
   std::mt19937_64 rng(params.seed);
   cut.seed_face = pick_seed_face(q, rng);
   cut.motorcycle_edges = motorcycle_graph(q, cut.labels, rng);
@@ -573,8 +600,26 @@ CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params) {
   cut.overlap_count.assign(at(nf), 0);
   for (int f = 0; f < nf; ++f) cut.overlap_count[at(f)] = patch.faces_in_cell(cut.face_uv[at(f)]);
   build_disc(cut);
-  cut.arcs = find_arcs(q, cut.labels, cut.cut_edge);
+  cut.arcs = find_arcs(q, cut.labels, cut.cut_edge, params.arc_turn_deg);
   return cut;
+}
+
+int adjacent_opposite_pairs(const HalfedgeMesh& q, const FieldLabels& labels) {
+  auto index = [&](int v) { return q.is_boundary_vertex(v) ? 0 : 4 - labels.corner_count[at(v)]; };
+  std::vector<bool> paired(at(q.num_vertices()), false);
+  int pairs = 0;
+  for (int v = 0; v < q.num_vertices(); ++v) {
+    if (paired[at(v)] || std::abs(index(v)) != 1) continue;
+    for (const int h : q.outgoing(v)) {
+      const int w = q.to(h);
+      if (!paired[at(w)] && index(w) == -index(v)) {
+        paired[at(v)] = paired[at(w)] = true;
+        ++pairs;
+        break;
+      }
+    }
+  }
+  return pairs;
 }
 
 std::vector<std::string> verify_cut(const CutMesh& cut) {

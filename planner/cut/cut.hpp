@@ -68,11 +68,21 @@ struct CutParams {
   double cs = 1000.0;  // §4.2 straightness weight (motorcycle-graph edges)
   double co = 1.0;     // §4.2 overlap weight
   VanishingRule vanishing;
+  // A cut-arc ends where the cut turns by more than this many degrees,
+  // measured between the chords two cut edges back and two ahead.
+  double arc_turn_deg = 120.0;
+  // Equal scores: the face nearest the seed in the (u, v) grid's rings
+  // (max(|u|, |v|)) first, so the patch grows as a square; else in the
+  // order of the random keys (§4.2).
+  bool square_growth = false;
 };
 
-// A cut-arc: a straight sequence of cut edges of Q (§3, §4), as the path of
-// Q's vertices it runs along (edges are consecutive pairs). A closed arc
-// repeats its first vertex at the end.
+// A cut-arc: a sequence of cut edges of Q (§3, §4) between nodes of the cut
+// graph, as the path of Q's vertices it runs along (edges are consecutive
+// pairs). A node is an irregular vertex, a vertex on the mesh boundary, a
+// vertex where other than two cut edges meet, or one where the cut turns by
+// more than CutParams::arc_turn_deg. A closed arc repeats its first vertex
+// at the end.
 struct CutArc {
   std::vector<int> vertices;
   double length_mm = 0.0;
@@ -101,7 +111,16 @@ struct CutMesh {
 // cuttability score c_s * (motorcycle crossings) + c_o * (overlap score);
 // equal scores are ordered by a random key from params.seed. Q must be one
 // connected oriented manifold of triangles and quads.
-CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params);
+// `vanishing_corner`, when given, labels Q instead of params.vanishing
+// (the field-guided proxy's corners, field_proxy.hpp).
+CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params,
+                    const std::vector<int>* vanishing_corner = nullptr);
+
+// Adjacent opposite pairs: interior vertices of index +1 and -1 one edge
+// apart, matched so that each vertex is in one pair at most (greedily, in
+// vertex order). They are the avoidable singularities of a proxy: the pair
+// cancels in the field, yet the cut must pass through both.
+int adjacent_opposite_pairs(const HalfedgeMesh& q, const FieldLabels& labels);
 
 // Independent checks of a CutMesh: the disc has Euler characteristic 1 and
 // one boundary loop, every uncut interior edge has opposite directions on
