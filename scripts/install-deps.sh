@@ -7,7 +7,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git ccache
   clang clang-format libclang-rt-dev
-  libeigen3-dev libopenmesh-dev
+  libeigen3-dev libopenmesh-dev liblemon-dev
   libboost-program-options-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   libusb-1.0-0-dev libserialport-dev

@@ -19,7 +19,15 @@ void add_cut_options(po::options_description& options, CutOptions& cut) {
       "vanishing-slack", po::value<double>(&cut.vanishing_slack_deg)->default_value(30.0),
       "degrees a regular vanishing corner may be wider than the most acute one")(
       "proxy-edge-mm", po::value<double>(&cut.params.proxy.proxy_edge_mm)->default_value(0.0),
-      "edge length of the remeshed proxy for triangle input (0: about 3000 quads)");
+      "edge length of the remeshed proxy for triangle input (0: about 3000 quads)")(
+      "proxy", po::value<std::string>(&cut.proxy)->default_value(cut.proxy),
+      "proxy of a surface that is not quad-dominant: remesh (field-aligned quads, §4.1) or "
+      "field (triangles whose vanishing corners follow the smoothest cross field; it also "
+      "replaces a quad-dominant input that carries avoidable singularities)")(
+      "growth", po::value<std::string>(&cut.growth)->default_value(cut.growth),
+      "order of equal cuttability scores: random (§4.2) or square (the ring nearest the seed "
+      "first)")("arc-turn", po::value<double>(&p.arc_turn_deg)->default_value(p.arc_turn_deg),
+                "a cut-arc ends where the cut turns by more than this many degrees");
 }
 
 std::string check_cut_options(CutOptions& cut) {
@@ -32,6 +40,14 @@ std::string check_cut_options(CutOptions& cut) {
     return "--vanishing-slack must be between 0 and 180 degrees";
   p.vanishing.method = *method;
   p.vanishing.slack_deg = cut.vanishing_slack_deg;
+  const auto proxy = planner::proxy_method(cut.proxy);
+  if (!proxy) return "--proxy takes field or remesh, not '" + cut.proxy + "'";
+  cut.params.proxy.method = *proxy;
+  if (cut.growth != "random" && cut.growth != "square")
+    return "--growth takes random or square, not '" + cut.growth + "'";
+  p.square_growth = cut.growth == "square";
+  if (!(p.arc_turn_deg >= 0.0) || p.arc_turn_deg > 180.0)
+    return "--arc-turn must be between 0 and 180 degrees";
   return {};
 }
 

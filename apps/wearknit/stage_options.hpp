@@ -16,6 +16,8 @@ namespace wearknit::cli {
 struct CutOptions {
   planner::CutStageParams params;
   std::string vanishing = "acute";
+  std::string proxy = "remesh";
+  std::string growth = "random";
   double vanishing_slack_deg = 30.0;
 };
 void add_cut_options(boost::program_options::options_description& options, CutOptions& cut);

@@ -111,8 +111,12 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
             {"holes_filled", r.holes_filled},
             {"folds_removed", r.folds_removed},
             {"remesh_attempts", r.remesh_attempts},
+            {"input_verdict", r.input_verdict},
+            {"valence_flips", r.valence_flips},
+            {"field_misfit", r.field_misfit},
             {"irregular_vertices", q.count},
             {"singular_vertices", cut.labels.singular_vertices.size()},
+            {"adjacent_pairs", adjacent_opposite_pairs(cut.proxy, cut.labels)},
             {"index_sum", q.index_sum},
             {"by_index", by_index_json(q)}}},
           {"field",
@@ -129,7 +133,9 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
             {"cs", r.params.cs},
             {"co", r.params.co},
             {"vanishing", vanishing_name(r.params.vanishing.method)},
-            {"vanishing_slack_deg", r.params.vanishing.slack_deg}}},
+            {"vanishing_slack_deg", r.params.vanishing.slack_deg},
+            {"arc_turn_deg", r.params.arc_turn_deg},
+            {"growth", r.params.square_growth ? "square" : "random"}}},
           {"irregular_vertices", cut.labels.irregular_vertices},
           {"irregular_vertex_count", s.irregular_vertices},
           {"cut_edges", s.cut_edges},
@@ -176,6 +182,9 @@ CutReport report_from_json(const json& r) {
   report.holes_filled = proxy.value("holes_filled", 0);
   report.folds_removed = proxy.value("folds_removed", 0);
   report.remesh_attempts = proxy.value("remesh_attempts", 0);
+  report.input_verdict = proxy.value("input_verdict", std::string());
+  report.valence_flips = proxy.value("valence_flips", 0);
+  report.field_misfit = proxy.value("field_misfit", 0);
   const json field = r.value("field", json::object());
   report.field.edge_mm = field.value("edge_mm", 0.0);
   report.field.faces = field.value("faces", 0);
@@ -200,6 +209,8 @@ CutReport report_from_json(const json& r) {
   report.params.vanishing.method = vanishing_method(params.value("vanishing", std::string("acute")))
                                        .value_or(VanishingRule::Method::Acute);
   report.params.vanishing.slack_deg = params.value("vanishing_slack_deg", 0.0);
+  report.params.arc_turn_deg = params.value("arc_turn_deg", report.params.arc_turn_deg);
+  report.params.square_growth = params.value("growth", std::string("random")) == "square";
   report.picture_px = r.value("picture_px", 0);
   const json time = r.value("time_s", json::object());
   report.load_seconds = time.value("load", 0.0);

@@ -20,9 +20,12 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Cuts `proxy` with `params` and checks the cut's guarantees.
-CutMesh checked_cut(HalfedgeMesh proxy, const CutParams& params) {
-  CutMesh cut = cut_surface(std::move(proxy), params);
+// Cuts `proxy` with `params` (and the given vanishing corners, when there
+// are any) and checks the cut's guarantees.
+CutMesh checked_cut(HalfedgeMesh proxy, const CutParams& params,
+                    const std::vector<int>& vanishing_corner) {
+  CutMesh cut =
+      cut_surface(std::move(proxy), params, vanishing_corner.empty() ? nullptr : &vanishing_corner);
   const std::vector<std::string> problems = verify_cut(cut);
   if (!problems.empty()) {
     std::string message =
@@ -31,6 +34,58 @@ CutMesh checked_cut(HalfedgeMesh proxy, const CutParams& params) {
     throw std::logic_error(message);
   }
   return cut;
+}
+
+// The smoothest cross field of `garment` at `edge_mm`, into the report.
+void report_field(const PolygonMesh& garment, double edge_mm, CutReport& report) {
+  const auto start = std::chrono::steady_clock::now();
+  CrossFieldParams field_params;
+  field_params.edge_mm = edge_mm;
+  const CrossField field = smoothest_cross_field(garment, field_params);
+  report.field.edge_mm = field_params.edge_mm;
+  report.field.faces = static_cast<int>(field.surface.faces.size());
+  report.field.euler_characteristic = field.euler_characteristic;
+  report.field.boundary_loops = field.boundary_loops;
+  report.field.singularities = field_singularities(field);
+  report.field.iterations = field.iterations;
+  report.field_seconds += seconds_since(start);
+}
+
+// --proxy field with a quad-dominant input: the input is kept when it is
+// clean against the field's f singularities, at most min(clean_ratio * f,
+// clean_bound_ratio * f + clean_bound_extra) singular vertices with the
+// cut's vanishing rule, no more than clean_pairs_ratio of them in adjacent
+// +1/-1 pairs. Returns the verdict; `clean` says which.
+std::string judge_input(const PolygonMesh& input, const CutStageParams& params, int f,
+                        bool& clean) {
+  const HalfedgeMesh q(input);
+  const FieldLabels labels = label_field(q, params.cut.vanishing);
+  const int singular = static_cast<int>(labels.singular_vertices.size());
+  const int pairs = adjacent_opposite_pairs(q, labels);
+  const ProxyParams& p = params.proxy;
+  const double bound = std::min(p.clean_ratio * f, p.clean_bound_ratio * f + p.clean_bound_extra);
+  clean = singular <= bound && pairs <= p.clean_pairs_ratio * singular;
+  std::ostringstream text;
+  text << std::setprecision(3) << (clean ? "kept" : "remeshed") << ": the input has " << singular
+       << " singular vertices (" << pairs << " in adjacent +1/-1 pairs) against the field's " << f
+       << "; clean is at most " << bound << " with at most " << 100 * p.clean_pairs_ratio
+       << "% in pairs";
+  return text.str();
+}
+
+void take_proxy(const ProxyResult& proxy, CutReport& report) {
+  report.remeshed = proxy.remeshed;
+  report.proxy_edge_mm = proxy.edge_mm;
+  report.polygons_split = proxy.polygons_split;
+  report.triangles_paired = proxy.triangles_paired;
+  report.samples = proxy.samples;
+  report.holes_filled = proxy.holes_filled;
+  report.folds_removed = proxy.folds_removed;
+  report.remesh_attempts = proxy.remesh_attempts;
+  report.proxy_method = proxy.method;
+  report.remesh_failure = proxy.remesh_failure;
+  report.valence_flips = proxy.valence_flips;
+  report.field_misfit = proxy.field_misfit;
 }
 
 }  // namespace
@@ -45,34 +100,30 @@ Cut cut_garment(const PolygonMesh& garment, const CutStageParams& params) {
 
   auto start = std::chrono::steady_clock::now();
   ProxyResult proxy = make_proxy(garment, params.proxy);
-  report.remeshed = proxy.remeshed;
-  report.proxy_edge_mm = proxy.edge_mm;
-  report.polygons_split = proxy.polygons_split;
-  report.triangles_paired = proxy.triangles_paired;
-  report.samples = proxy.samples;
-  report.holes_filled = proxy.holes_filled;
-  report.folds_removed = proxy.folds_removed;
-  report.remesh_attempts = proxy.remesh_attempts;
-  report.proxy_method = proxy.method;
-  report.remesh_failure = proxy.remesh_failure;
   report.proxy_seconds = seconds_since(start);
 
   // The field at the proxy's scale: detail far below an edge of Q, which
   // Q cannot follow, makes no singularity there either.
-  start = std::chrono::steady_clock::now();
-  CrossFieldParams field_params;
-  field_params.edge_mm = proxy.edge_mm;
-  const CrossField field = smoothest_cross_field(garment, field_params);
-  report.field.edge_mm = field_params.edge_mm;
-  report.field.faces = static_cast<int>(field.surface.faces.size());
-  report.field.euler_characteristic = field.euler_characteristic;
-  report.field.boundary_loops = field.boundary_loops;
-  report.field.singularities = field_singularities(field);
-  report.field.iterations = field.iterations;
-  report.field_seconds = seconds_since(start);
+  report_field(garment, proxy.edge_mm, report);
+  if (params.proxy.method == ProxyMethod::Field && proxy.method == "input") {
+    start = std::chrono::steady_clock::now();
+    bool clean = false;
+    report.input_verdict = judge_input(proxy.mesh, params, report.field.singularities.count, clean);
+    if (!clean) {
+      proxy = make_field_proxy(garment, params.proxy);
+      report.proxy_seconds += seconds_since(start);
+      report.field_seconds = 0.0;
+      report_field(garment, proxy.edge_mm, report);
+    } else {
+      report.proxy_seconds += seconds_since(start);
+    }
+  }
+  const std::vector<int> vanishing_corner = std::move(proxy.vanishing_corner);
+  HalfedgeMesh q(std::move(proxy.mesh));
+  take_proxy(proxy, report);
 
   start = std::chrono::steady_clock::now();
-  result.mesh = checked_cut(HalfedgeMesh(std::move(proxy.mesh)), params.cut);
+  result.mesh = checked_cut(std::move(q), params.cut, vanishing_corner);
   report.cut_seconds = seconds_since(start);
   return result;
 }
@@ -82,7 +133,11 @@ Cut recut(const Cut& cut, std::uint64_t seed) {
   result.report = cut.report;
   result.report.params.seed = seed;
   const auto start = std::chrono::steady_clock::now();
-  result.mesh = checked_cut(HalfedgeMesh(cut.mesh.proxy.polygons()), result.report.params);
+  // The field-guided proxy's corners come from its field, not from a rule.
+  const std::vector<int> none;
+  const std::vector<int>& corners =
+      cut.report.proxy_method == "field" ? cut.mesh.labels.vanishing_corner : none;
+  result.mesh = checked_cut(HalfedgeMesh(cut.mesh.proxy.polygons()), result.report.params, corners);
   result.report.cut_seconds = seconds_since(start);
   return result;
 }
@@ -134,7 +189,9 @@ std::string describe(const Cut& cut) {
          << ", Euler characteristic " << f.euler_characteristic << ") at " << f.edge_mm << " mm";
   }
   text << "; Q: " << q.count << " irregular vertices (" << by_index_text(q) << "), "
-       << cut.mesh.labels.singular_vertices.size() << " singular\n"
+       << cut.mesh.labels.singular_vertices.size() << " singular, "
+       << adjacent_opposite_pairs(cut.mesh.proxy, cut.mesh.labels) << " adjacent +1/-1 pairs\n"
+       << (r.input_verdict.empty() ? std::string() : "proxy " + r.input_verdict + "\n")
        << "cut: " << s.irregular_vertices << " irregular vertices, " << s.cut_edges
        << " cut edges in " << s.arcs << " arcs, " << s.cut_length_mm << " mm, "
        << s.overlapping_faces << " overlapping faces, " << std::setprecision(3)

@@ -44,6 +44,11 @@ struct CutReport {
   int remesh_attempts = 0;  // extractions tried, at spacings a few percent apart
   std::string proxy_method = "input";
   std::string remesh_failure;
+  // With --proxy field and a quad-dominant input: why it was kept or
+  // replaced by the field-guided proxy (cut_stage.cpp); else empty.
+  std::string input_verdict;
+  int valence_flips = 0;  // field proxy: edges flipped toward valence 6
+  int field_misfit = 0;   // field proxy: quarter turns of Q's indices away from the field's
   FieldReport field;
   CutParams params;
   int picture_px = 0;  // the size of cuts-3d.png's views as cut.json records it; 0 = not drawn

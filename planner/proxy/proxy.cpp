@@ -12,6 +12,7 @@
 #include "planner/mesh/mesh.hpp"
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/mesh/soup.hpp"
+#include "planner/proxy/field_proxy.hpp"
 #include "planner/proxy/remesh.hpp"
 
 namespace planner {
@@ -202,13 +203,17 @@ void pair_resampled(const PolygonMesh& input, const ProxyParams& params, std::st
   result.triangles_paired = pair_triangles(result.mesh, params.field_iterations);
 }
 
+// The target edge of a remeshed proxy, mm.
+double target_edge(const PolygonMesh& input, const ProxyParams& params) {
+  return params.proxy_edge_mm > 0.0 ? params.proxy_edge_mm
+                                    : std::sqrt(total_area(input) / std::max(1, params.auto_faces));
+}
+
 // The proxy of a surface that is not quad-dominant: field-aligned
 // remeshing, or pairing when no extraction is clean.
 void remesh_proxy(const PolygonMesh& input, const ProxyParams& params, ProxyResult& result) {
   result.remeshed = true;
-  const double area = total_area(input);
-  result.edge_mm = params.proxy_edge_mm > 0.0 ? params.proxy_edge_mm
-                                              : std::sqrt(area / std::max(1, params.auto_faces));
+  result.edge_mm = target_edge(input, params);
   RemeshParams remesh;
   remesh.orientation_iterations = params.field_iterations;
   remesh.position_iterations = params.position_iterations;
@@ -246,7 +251,44 @@ void remesh_proxy(const PolygonMesh& input, const ProxyParams& params, ProxyResu
 
 }  // namespace
 
+const char* proxy_method_name(ProxyMethod method) {
+  switch (method) {
+    case ProxyMethod::Field:
+      return "field";
+    case ProxyMethod::Remesh:
+      return "remesh";
+  }
+  throw std::logic_error("proxy_method_name: unknown method");
+}
+
+std::optional<ProxyMethod> proxy_method(std::string_view name) {
+  for (const auto method : {ProxyMethod::Field, ProxyMethod::Remesh}) {
+    if (name == proxy_method_name(method)) return method;
+  }
+  return std::nullopt;
+}
+
+ProxyResult make_field_proxy(const PolygonMesh& input, const ProxyParams& params) {
+  ProxyResult result;
+  result.remeshed = true;
+  result.method = "field";
+  result.edge_mm = target_edge(input, params);
+  FieldProxyParams field;
+  field.edge_mm = result.edge_mm;
+  field.flip_bend_deg = params.flip_bend_deg;
+  field.misfit_cost = params.misfit_cost;
+  field.singular_cost = params.singular_cost;
+  FieldProxy proxy = field_guided_proxy(input, field);
+  result.mesh = std::move(proxy.mesh);
+  result.vanishing_corner = std::move(proxy.vanishing_corner);
+  result.valence_flips = proxy.valence_flips;
+  result.field_misfit = proxy.misfit;
+  return result;
+}
+
 ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params) {
+  if (params.method == ProxyMethod::Field && !is_quad_dominant(input))
+    return make_field_proxy(input, params);
   ProxyResult result;
   if (is_quad_dominant(input)) {
     result.mesh = input;

@@ -1,6 +1,10 @@
 // The quad-dominant proxy Q of the garment surface (§4.1).
 //
-// A quad-dominant input (more than half of its faces are quads) is used as
+// With ProxyMethod::Field a surface that is not quad-dominant becomes the
+// field-guided triangle proxy of field_proxy.hpp (the cut stage also
+// replaces a quad-dominant input that is not clean by it, cut_stage.hpp).
+// With ProxyMethod::Remesh, the default:
+// a quad-dominant input (more than half of its faces are quads) is used as
 // it is. Any other input (a triangle mesh, as users have) is remeshed with
 // field-aligned extraction (remesh.hpp) at the target edge length, tried
 // again at nearby spacings when the extraction is not clean; when none is,
@@ -12,19 +16,42 @@
 // cutting quads off their largest corner.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "planner/mesh/mesh.hpp"
 
 namespace planner {
 
+// How Q is made of a surface that is not quad-dominant (docs/cutting.md, "The proxy Q").
+enum class ProxyMethod : std::uint8_t { Field, Remesh };
+// The method's name as `--proxy` and cut.json spell it: field or remesh.
+const char* proxy_method_name(ProxyMethod method);
+std::optional<ProxyMethod> proxy_method(std::string_view name);
+
 struct ProxyParams {
+  ProxyMethod method = ProxyMethod::Remesh;
   // Target edge length of a remeshed proxy, mm; 0 picks the length that
   // gives about `auto_faces` quads.
   double proxy_edge_mm = 0.0;
   int auto_faces = 3000;
   int field_iterations = 30;     // orientation-field smoothing sweeps
   int position_iterations = 30;  // position-field smoothing sweeps
+  // Field: field_proxy.hpp's parameters.
+  double flip_bend_deg = 30.0;
+  int misfit_cost = 30;
+  int singular_cost = 31;
+  // Field: a quad-dominant input is kept only when it is clean against the
+  // field's singularity count f: at most min(clean_ratio * f,
+  // clean_bound_ratio * f + clean_bound_extra) singular vertices, of which
+  // at most clean_pairs_ratio sit in adjacent +1/-1 pairs (cut_stage.cpp).
+  double clean_ratio = 1.5;
+  double clean_bound_ratio = 1.2;
+  int clean_bound_extra = 4;
+  double clean_pairs_ratio = 0.1;
 };
 
 struct ProxyResult {
@@ -44,6 +71,11 @@ struct ProxyResult {
   // remeshed: extractions tried (the first spacing, then 99, 101, 97, 103% of
   // it until one gives a clean surface)
   int remesh_attempts = 0;
+  // "field" (field_proxy.hpp): every face a triangle, with these vanishing
+  // corners (per face); empty for the other methods.
+  std::vector<int> vanishing_corner;
+  int valence_flips = 0;  // field: edges flipped toward valence 6
+  int field_misfit = 0;   // field: quarter turns of Q's indices away from the field's
 };
 
 // More than half of the faces are quads.
@@ -57,5 +89,8 @@ int split_polygons(PolygonMesh& mesh);
 
 // The proxy Q of a checked mesh (mesh_io.hpp check_mesh).
 ProxyResult make_proxy(const PolygonMesh& input, const ProxyParams& params);
+
+// The field-guided proxy of a checked mesh, whatever its faces.
+ProxyResult make_field_proxy(const PolygonMesh& input, const ProxyParams& params);
 
 }  // namespace planner

@@ -150,5 +150,46 @@ TEST(CutCliTest, VanishingOptionIsCheckedAndRecorded) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(CutCliTest, ProxyGrowthAndArcTurnOptionsAreCheckedAndRecorded) {
+  const auto proxy = run_wearknit("cut x.obj -o out --proxy quads");
+  EXPECT_EQ(proxy.exit_code, 2);
+  EXPECT_EQ(proxy.err, "wearknit cut: --proxy takes field or remesh, not 'quads'\n");
+  const auto growth = run_wearknit("cut x.obj -o out --growth round");
+  EXPECT_EQ(growth.exit_code, 2);
+  EXPECT_EQ(growth.err, "wearknit cut: --growth takes random or square, not 'round'\n");
+  const auto turn = run_wearknit("cut x.obj -o out --arc-turn 200");
+  EXPECT_EQ(turn.exit_code, 2);
+  EXPECT_EQ(turn.err, "wearknit cut: --arc-turn must be between 0 and 180 degrees\n");
+
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const auto dir = make_temp_dir("cut_cli_proxy");
+  // torus-qd carries 136 singular vertices where the field has 8: with
+  // --proxy field it is not clean and is replaced; by default it is kept.
+  const std::string mesh = (shared / "meshes" / "torus-qd.obj").string();
+  const auto field = run_wearknit("cut " + mesh + " -o " + (dir / "field").string() +
+                                  " --no-pictures --proxy field --growth square --arc-turn 90");
+  ASSERT_EQ(field.exit_code, 0) << field.err;
+  EXPECT_NE(field.out.find("proxy remeshed: the input has "), std::string::npos) << field.out;
+  ASSERT_EQ(
+      run_wearknit("cut " + mesh + " -o " + (dir / "kept").string() + " --no-pictures").exit_code,
+      0);
+  const auto replaced = nlohmann::json::parse(read_file(dir / "field" / "report.json"));
+  const auto kept = nlohmann::json::parse(read_file(dir / "kept" / "report.json"));
+  EXPECT_EQ(replaced["proxy"]["method"], "field");
+  EXPECT_EQ(replaced["proxy"]["input_verdict"].get<std::string>().rfind("remeshed: ", 0), 0U);
+  EXPECT_EQ(replaced["params"]["growth"], "square");
+  EXPECT_NEAR(replaced["params"]["arc_turn_deg"].get<double>(), 90.0, 1e-9);
+  const int field_singularities = replaced["field"]["singularities"].get<int>();
+  const int singular = replaced["proxy"]["singular_vertices"].get<int>();
+  EXPECT_LE(singular, 1.2 * field_singularities + 4);
+  EXPECT_LE(replaced["proxy"]["adjacent_pairs"].get<int>(), 0.1 * singular);
+  EXPECT_LT(replaced["arcs"].get<int>(), kept["arcs"].get<int>());
+  EXPECT_EQ(kept["proxy"]["method"], "input");
+  EXPECT_EQ(kept["proxy"]["input_verdict"], "");
+  EXPECT_EQ(kept["params"]["growth"], "random");
+  EXPECT_GT(kept["proxy"]["adjacent_pairs"].get<int>(), 0);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace planner

@@ -41,7 +41,8 @@ TEST(CutStageTest, ReportsTheFieldBesideTheProxysIrregularVertices) {
                                "2) at "),
             std::string::npos)
       << describe(cut);
-  EXPECT_NE(describe(cut).find("; Q: 8 irregular vertices (+1: 8), 8 singular\ncut: "),
+  EXPECT_NE(describe(cut).find(
+                "; Q: 8 irregular vertices (+1: 8), 8 singular, 0 adjacent +1/-1 pairs\ncut: "),
             std::string::npos)
       << describe(cut);
 }

@@ -1,0 +1,77 @@
+// The field-guided proxy Q (docs/cutting.md, "The field-guided proxy"): a
+// triangle mesh of the garment whose vanishing corners (§4.1) are chosen so
+// that Q's irregular vertices are where the smoothest cross field of the
+// surface (cross_field.hpp) has its singularities, and nowhere else the
+// count of corners allows. §9 names a meshing technique made for knitting as
+// future work; this is ours.
+//
+// Every face of Q is a triangle, and a triangle with a vanishing corner is a
+// quad with one side of nil length: its two sides at the vanishing corner run
+// along one direction of the field, the side across it along the other. So
+// the choice of one vanishing corner per triangle decides every vertex's
+// corner count, c(v) = triangles around v - vanishing corners at v, and
+// through it the vertex's index 4 - c(v) in quarter turns. The choice is a
+// min-cost flow: each triangle sends one unit to one of its three corners;
+// vertex v with x units has c(v) = valence(v) - x and costs
+//   misfit_cost * |c(v) - (4 - k(v))| + singular_cost * (c(v) - 4)²
+// where k(v) is the field's index at v (0 on the boundary, where nothing is
+// charged). The cost is convex in x, so the flow is exact (LEMON's network
+// simplex). With singular_cost just above misfit_cost a vertex is irregular
+// only where the corner counts force an index somewhere (their indices sum
+// to 4χ) and the field puts it there; index ±2 costs four times ±1, so the
+// field's ±1 singularities are not merged. Each corner's own cost adds how
+// badly the triangle would sit in the field with that corner vanishing.
+#pragma once
+
+#include <vector>
+
+#include "planner/mesh/mesh.hpp"
+
+namespace planner {
+
+struct FieldProxyParams {
+  double edge_mm = 1.0;          // target edge of the triangles
+  double flip_bend_deg = 30.0;   // equalize_valences: the most a flip may fold the surface
+  double min_corner_deg = 10.0;  // equalize_valences: the least corner a flip may make
+  int misfit_cost = 30;          // per quarter turn of index away from the field's
+  int singular_cost = 31;        // times (c(v) - 4)²
+  int alignment_cost = 10;       // a corner whose triangle lies at 45 degrees to the field
+};
+
+struct FieldProxy {
+  PolygonMesh mesh;                   // triangles only
+  std::vector<int> vanishing_corner;  // per face: the corner index that vanishes
+  int valence_flips = 0;              // edges flipped by equalize_valences
+  int field_singularities = 0;        // of the field on `mesh`
+  int misfit = 0;                     // sum over interior vertices of |c(v) - (4 - k(v))|
+  double mean_alignment = 0.0;        // mean misalignment of the chosen corners, 0..1
+};
+
+// Flips edges of a triangle mesh toward valence 6 inside and 4 on the
+// boundary (a flip is made when it lowers the sum of squared deviations of
+// its four vertices), only where the two new triangles fold by at most
+// `bend_deg`, no corner falls below `min_corner_deg` and the new edge is not
+// already there. Sweeps until none is made; returns the flips made.
+int equalize_valences(PolygonMesh& triangles, double bend_deg, double min_corner_deg);
+
+// How badly triangle f of `mesh` sits in a cross field with corner `corner`
+// vanishing: the side across the corner and the line from the corner to
+// that side's middle should each run along a direction of the cross
+// (`direction`: one of its directions, tangent to f). 0 when both do, 1 when
+// both lie at 45 degrees to it.
+double vanishing_misalignment(const PolygonMesh& mesh, int f, int corner, const Vec3& direction);
+
+// The proxy of a checked surface: resampled to triangles of about
+// params.edge_mm, valences equalized, the smoothest cross field solved on
+// those triangles and the vanishing corners chosen by the flow above.
+// Deterministic.
+FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams& params);
+
+// The flow alone, on a triangle mesh with its field's per-vertex index (in
+// quarter turns) and one field direction per triangle.
+std::vector<int> field_vanishing_corners(const PolygonMesh& triangles,
+                                         const std::vector<int>& field_index,
+                                         const std::vector<Vec3>& field_direction,
+                                         const FieldProxyParams& params);
+
+}  // namespace planner

@@ -1,0 +1,179 @@
+#include "planner/proxy/field_proxy.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "planner/cut/cut.hpp"
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/mesh/shapes.hpp"
+#include "planner/proxy/cross_field.hpp"
+#include "planner/proxy/proxy.hpp"
+#include "tests/planner/test_meshes.hpp"
+
+namespace planner {
+namespace {
+
+// Every quad split into two triangles along the diagonal from its first corner.
+PolygonMesh triangulated(const PolygonMesh& quads) {
+  PolygonMesh mesh;
+  mesh.positions = quads.positions;
+  for (const auto& f : quads.faces) {
+    mesh.faces.push_back({f[0], f[1], f[2]});
+    mesh.faces.push_back({f[0], f[2], f[3]});
+  }
+  return mesh;
+}
+
+// Sum over vertices of (valence - 6)², 4 on the boundary.
+int valence_deviation(const PolygonMesh& mesh) {
+  const HalfedgeMesh he(mesh);
+  int sum = 0;
+  for (int v = 0; v < he.num_vertices(); ++v) {
+    const int ideal = he.is_boundary_vertex(v) ? 4 : 6;
+    const int off = static_cast<int>(he.outgoing(v).size()) - ideal;
+    sum += off * off;
+  }
+  return sum;
+}
+
+// The corner counts the vanishing corners leave, as FieldLabels.
+FieldLabels labels_of(const PolygonMesh& mesh, const std::vector<int>& corners) {
+  return labels_with_vanishing(HalfedgeMesh(mesh), corners);
+}
+
+TEST(FieldProxyTest, ValenceFlipsEqualizeAFlatGridAndKeepItAManifold) {
+  // A grid whose quads are split along alternating diagonals: interior
+  // vertices of valence 4 and 8.
+  const PolygonMesh quads = test_meshes::grid(8, 8);
+  PolygonMesh mesh;
+  mesh.positions = quads.positions;
+  for (std::size_t i = 0; i < quads.faces.size(); ++i) {
+    const auto& f = quads.faces[i];
+    const bool flip = ((i % 8) + (i / 8)) % 2 == 1;
+    if (flip) {
+      mesh.faces.push_back({f[0], f[1], f[3]});
+      mesh.faces.push_back({f[1], f[2], f[3]});
+    } else {
+      mesh.faces.push_back({f[0], f[1], f[2]});
+      mesh.faces.push_back({f[0], f[2], f[3]});
+    }
+  }
+  const int before = valence_deviation(mesh);
+  const int flips = equalize_valences(mesh, 30.0, 10.0);
+  EXPECT_GT(flips, 0);
+  EXPECT_LT(valence_deviation(mesh), before);
+  EXPECT_EQ(mesh.faces.size(), 128U);
+  knitout::DiagnosticSink sink;
+  EXPECT_TRUE(check_mesh(mesh, "flipped", sink));
+  for (const auto& f : mesh.faces) {  // still facing +z
+    const Vec3 n = (mesh.positions[at(f[1])] - mesh.positions[at(f[0])])
+                       .cross(mesh.positions[at(f[2])] - mesh.positions[at(f[0])]);
+    EXPECT_GT(n.z(), 0.0);
+  }
+}
+
+TEST(FieldProxyTest, NoFlipFoldsTheSurfaceMoreThanTheBendAllows) {
+  // Two triangles over a right-angled ridge: the flip would improve no
+  // valence worth a 90 degree fold across the new edge.
+  PolygonMesh mesh = triangulated(test_meshes::cube(3));
+  const PolygonMesh before = mesh;
+  equalize_valences(mesh, 0.0, 10.0);
+  // With no fold allowed only flat pairs may flip: no vertex leaves its plane's side.
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    const Vec3 n = (mesh.positions[at(face[1])] - mesh.positions[at(face[0])])
+                       .cross(mesh.positions[at(face[2])] - mesh.positions[at(face[0])]);
+    int axes = 0;
+    for (int k = 0; k < 3; ++k) axes += std::abs(n[k]) > 1e-9 ? 1 : 0;
+    EXPECT_EQ(axes, 1) << "face " << f << " spans two sides of the cube";
+  }
+  EXPECT_EQ(mesh.faces.size(), before.faces.size());
+}
+
+TEST(FieldProxyTest, MisalignmentIsNilAlongTheFieldAndOneAtFortyFiveDegrees) {
+  PolygonMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  mesh.faces = {{0, 1, 2}};
+  // Corner 0 vanishing: the side across and the median both run at 45 degrees.
+  EXPECT_NEAR(vanishing_misalignment(mesh, 0, 0, Vec3::UnitX()), 1.0, 1e-9);
+  // Corner 1: the side across is along y, the median 26.6 degrees off x.
+  EXPECT_LT(vanishing_misalignment(mesh, 0, 1, Vec3::UnitX()), 0.25);
+  // Turning the field by 45 degrees swaps the verdicts.
+  const Vec3 diagonal = Vec3(1, 1, 0).normalized();
+  EXPECT_NEAR(vanishing_misalignment(mesh, 0, 0, diagonal), 0.0, 1e-9);
+}
+
+TEST(FieldProxyTest, ATorusGetsNoSingularVertex) {
+  // The field on a torus has no singularity, and every vertex of a
+  // triangulated torus grid can keep four corners.
+  const PolygonMesh mesh = triangulated(test_meshes::torus(24, 12));
+  const CrossField field = smoothest_cross_field(mesh, {});
+  ASSERT_EQ(field_singularities(field).count, 0);
+  const std::vector<int> corners =
+      field_vanishing_corners(mesh, field.index, field.direction, FieldProxyParams{});
+  const FieldLabels labels = labels_of(mesh, corners);
+  EXPECT_TRUE(labels.irregular_vertices.empty());
+  EXPECT_TRUE(labels.singular_vertices.empty());
+}
+
+TEST(FieldProxyTest, TheProxyOfAnEllipsoidCarriesTheFieldsSingularitiesOnly) {
+  const PolygonMesh surface = triangulated(quad_ellipsoid(50.0, 0.7, 16));
+  FieldProxyParams params;
+  params.edge_mm = 6.0;
+  const FieldProxy proxy = field_guided_proxy(surface, params);
+  knitout::DiagnosticSink sink;
+  ASSERT_TRUE(check_mesh(proxy.mesh, "proxy", sink));
+  for (const auto& f : proxy.mesh.faces) ASSERT_EQ(f.size(), 3U);
+  const HalfedgeMesh q(proxy.mesh);
+  const FieldLabels labels = labels_of(proxy.mesh, proxy.vanishing_corner);
+  int index_sum = 0;
+  for (const int v : labels.irregular_vertices) index_sum += 4 - labels.corner_count[at(v)];
+  EXPECT_EQ(index_sum, 8);  // 4χ
+  EXPECT_LE(static_cast<double>(labels.singular_vertices.size()),
+            1.2 * proxy.field_singularities + 4);
+  EXPECT_EQ(adjacent_opposite_pairs(q, labels), 0);
+  // And it cuts into one disc with the cut's guarantees.
+  const CutMesh cut = cut_surface(q, CutParams{}, &proxy.vanishing_corner);
+  EXPECT_TRUE(verify_cut(cut).empty());
+  EXPECT_LT(cut.arcs.size(), 20U);
+}
+
+TEST(FieldProxyTest, AQuadDominantInputIsNotRemeshedByMakeProxy) {
+  // make_proxy's field method replaces surfaces that are not quad-dominant
+  // only; the cut stage judges quad-dominant ones (cut_stage.hpp).
+  ProxyParams params;
+  params.method = ProxyMethod::Field;
+  const ProxyResult kept = make_proxy(quad_ellipsoid(50.0, 1.0, 8), params);
+  EXPECT_EQ(kept.method, "input");
+  EXPECT_TRUE(kept.vanishing_corner.empty());
+  const ProxyResult field = make_proxy(triangulated(quad_ellipsoid(50.0, 1.0, 8)), params);
+  EXPECT_EQ(field.method, "field");
+  EXPECT_EQ(field.vanishing_corner.size(), field.mesh.faces.size());
+}
+
+TEST(FieldProxyTest, ArcsEndWhereTheCutTurnsSharperThanTheLimit) {
+  const PolygonMesh surface = triangulated(quad_ellipsoid(50.0, 0.7, 16));
+  FieldProxyParams params;
+  params.edge_mm = 6.0;
+  const FieldProxy proxy = field_guided_proxy(surface, params);
+  const HalfedgeMesh q(proxy.mesh);
+  std::vector<std::size_t> arcs;
+  for (const double turn : {180.0, 120.0, 45.0, 0.0}) {
+    CutParams cut_params;
+    cut_params.arc_turn_deg = turn;
+    const CutMesh cut = cut_surface(q, cut_params, &proxy.vanishing_corner);
+    EXPECT_TRUE(verify_cut(cut).empty());
+    arcs.push_back(cut.arcs.size());
+  }
+  // The same cut edges, split at more and more turns; at 0 degrees no turn
+  // is straight enough on a curved surface, so every edge is an arc.
+  EXPECT_LE(arcs[0], arcs[1]);
+  EXPECT_LE(arcs[1], arcs[2]);
+  EXPECT_LT(arcs[2], arcs[3]);
+}
+
+}  // namespace
+}  // namespace planner
