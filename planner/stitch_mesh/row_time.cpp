@@ -6,10 +6,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <stdexcept>
+#include <unordered_map>
 #include <vector>
 
+#include "planner/common/index.hpp"
+#include "planner/mesh/soup.hpp"
 #include "planner/stitch_mesh/stitch_meshing.hpp"
 
 namespace planner::stitch_meshing {
@@ -24,6 +28,53 @@ std::array<Vec3, 3> hat_gradients(const LabelledDisc& disc, const Triangle& t) {
     g[at(i)] = t.area > 0 ? Vec3(t.normal.cross(e) / (2 * t.area)) : Vec3::Zero();
   }
   return g;
+}
+
+// The wale direction of a triangular face is its labels' at best within
+// about 30 degrees: its sides lie at 60 degrees to each other, and the
+// labels say only which of them are course and which wale. Quads of a
+// field-aligned proxy follow the field with all four sides; a proxy of
+// triangles (the field-guided proxy, docs/cutting.md) does not. Inside the
+// disc the labels agree across every edge, so the wale directions form one
+// vector field there, and the triangles of triangular faces take the
+// area-weighted mean of their own and their edge neighbours' directions,
+// a few sweeps, which averages that quantisation out; quads keep theirs.
+void smooth_triangle_labels(const LabelledDisc& disc, std::vector<Triangle>& tris) {
+  constexpr int kSweeps = 10;
+  std::unordered_map<std::uint64_t, std::vector<int>> by_edge;
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    for (int i = 0; i < 3; ++i) {
+      const int a = tris[k].v[at(i)];
+      const int b = tris[k].v[at((i + 1) % 3)];
+      by_edge[pair_key(std::min(a, b), std::max(a, b))].push_back(static_cast<int>(k));
+    }
+  }
+  std::vector<std::vector<int>> neighbours(tris.size());
+  for (const auto& [key, list] : by_edge) {
+    if (list.size() != 2) continue;
+    neighbours[at(list[0])].push_back(list[1]);
+    neighbours[at(list[1])].push_back(list[0]);
+  }
+  std::vector<bool> smooth(tris.size(), false);
+  bool any = false;
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    smooth[k] = disc.faces[at(tris[k].face)].size() == 3;
+    any = any || smooth[k];
+  }
+  if (!any) return;
+  for (int sweep = 0; sweep < kSweeps; ++sweep) {
+    std::vector<Vec3> next(tris.size());
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+      next[k] = tris[k].wale;
+      if (!smooth[k]) continue;
+      Vec3 sum = tris[k].area * tris[k].wale;
+      for (const int j : neighbours[k]) sum += tris[at(j)].area * tris[at(j)].wale;
+      const Vec3& n = tris[k].normal;
+      const Vec3 tangent = sum - sum.dot(n) * n;
+      if (tangent.norm() > 1e-12) next[k] = tangent.normalized();
+    }
+    for (std::size_t k = 0; k < tris.size(); ++k) tris[k].wale = next[k];
+  }
 }
 
 }  // namespace
@@ -83,6 +134,7 @@ std::vector<Triangle> triangulate(const LabelledDisc& disc) {
       tris.push_back(t);
     }
   }
+  smooth_triangle_labels(disc, tris);
   return tris;
 }
 
