@@ -16,11 +16,15 @@
 //   misfit_cost * |c(v) - (4 - k(v))| + singular_cost * (c(v) - 4)²
 // where k(v) is the field's index at v (0 on the boundary, where nothing is
 // charged). The cost is convex in x, so the flow is exact (LEMON's network
-// simplex). With singular_cost just above misfit_cost a vertex is irregular
-// only where the corner counts force an index somewhere (their indices sum
-// to 4χ) and the field puts it there; index ±2 costs four times ±1, so the
-// field's ±1 singularities are not merged. Each corner's own cost adds how
-// badly the triangle would sit in the field with that corner vanishing.
+// simplex). With singular_cost above misfit_cost (40 against 30) an index
+// placed where the field has its singularity costs 40 and anywhere else 70,
+// so the indices the corner counts need (they sum to 4χ) go to the field's
+// singularities; a +1/-1 pair of the field costs 80 kept and 60 cancelled,
+// so pairs cancel unless the triangles' alignment (below) outweighs it, and
+// Q ends near the fewest singular vertices its topology allows, placed by the
+// field. Index ±2 costs four times ±1, so singularities are not merged.
+// Each corner's own cost adds how badly the triangle would sit in the field
+// with that corner vanishing.
 #pragma once
 
 #include <vector>
@@ -34,7 +38,7 @@ struct FieldProxyParams {
   double flip_bend_deg = 30.0;   // equalize_valences: the most a flip may fold the surface
   double min_corner_deg = 10.0;  // equalize_valences: the least corner a flip may make
   int misfit_cost = 30;          // per quarter turn of index away from the field's
-  int singular_cost = 31;        // times (c(v) - 4)²
+  int singular_cost = 40;        // times (c(v) - 4)²
   int alignment_cost = 10;       // a corner whose triangle lies at 45 degrees to the field
 };
 

@@ -43,7 +43,7 @@ struct ProxyParams {
   // Field: field_proxy.hpp's parameters.
   double flip_bend_deg = 30.0;
   int misfit_cost = 30;
-  int singular_cost = 31;
+  int singular_cost = 40;
   // Field: a quad-dominant input is kept only when it is clean against the
   // field's singularity count f: at most min(clean_ratio * f,
   // clean_bound_ratio * f + clean_bound_extra) singular vertices, of which
