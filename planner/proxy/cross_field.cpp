@@ -26,38 +26,6 @@ using ComplexMatrix = Eigen::SparseMatrix<Complex>;
 constexpr int kSymmetry = 4;  // a cross: four directions
 const double kPi = std::acos(-1.0);
 
-// Each polygon as a fan of triangles from the first corner whose diagonals
-// are not already edges of the mesh: a diagonal that repeats an edge (two
-// quads sharing two sides at a valence-2 vertex) would join three
-// triangles and break the manifold.
-PolygonMesh triangulated(const PolygonMesh& mesh) {
-  std::set<std::pair<int, int>> edges;
-  for (const auto& face : mesh.faces) {
-    for (std::size_t i = 0; i < face.size(); ++i)
-      edges.insert(std::minmax(face[i], face[(i + 1) % face.size()]));
-  }
-  PolygonMesh tri;
-  tri.positions = mesh.positions;
-  for (const auto& face : mesh.faces) {
-    const std::size_t n = face.size();
-    std::size_t start = 0;
-    for (std::size_t k = 0; k < n && n > 3; ++k) {
-      bool free = true;
-      for (std::size_t i = 2; i + 1 < n; ++i)
-        free = free && edges.count(std::minmax(face[k], face[(k + i) % n])) == 0;
-      if (free) {
-        start = k;
-        break;
-      }
-    }
-    for (std::size_t i = 2; i + 1 < n; ++i)
-      edges.insert(std::minmax(face[start], face[(start + i) % n]));
-    for (std::size_t i = 1; i + 1 < n; ++i)
-      tri.faces.push_back({face[start], face[(start + i) % n], face[(start + i + 1) % n]});
-  }
-  return tri;
-}
-
 // The vector of half-edge h (from its start to its end).
 Vec3 halfedge_vector(const HalfedgeMesh& mesh, int h) {
   return mesh.position(mesh.to(h)) - mesh.position(mesh.from(h));
@@ -254,10 +222,38 @@ std::vector<int> vertex_indices(const HalfedgeMesh& mesh, const Frames& frames,
 
 }  // namespace
 
+PolygonMesh fan_triangulated(const PolygonMesh& mesh) {
+  std::set<std::pair<int, int>> edges;
+  for (const auto& face : mesh.faces) {
+    for (std::size_t i = 0; i < face.size(); ++i)
+      edges.insert(std::minmax(face[i], face[(i + 1) % face.size()]));
+  }
+  PolygonMesh tri;
+  tri.positions = mesh.positions;
+  for (const auto& face : mesh.faces) {
+    const std::size_t n = face.size();
+    std::size_t start = 0;
+    for (std::size_t k = 0; k < n && n > 3; ++k) {
+      bool free = true;
+      for (std::size_t i = 2; i + 1 < n; ++i)
+        free = free && edges.count(std::minmax(face[k], face[(k + i) % n])) == 0;
+      if (free) {
+        start = k;
+        break;
+      }
+    }
+    for (std::size_t i = 2; i + 1 < n; ++i)
+      edges.insert(std::minmax(face[start], face[(start + i) % n]));
+    for (std::size_t i = 1; i + 1 < n; ++i)
+      tri.faces.push_back({face[start], face[(start + i) % n], face[(start + i + 1) % n]});
+  }
+  return tri;
+}
+
 CrossField smoothest_cross_field(const PolygonMesh& surface, const CrossFieldParams& params) {
   CrossField result;
   // Triangulated first, so that resample's own fans see triangles only.
-  const PolygonMesh triangles = triangulated(surface);
+  const PolygonMesh triangles = fan_triangulated(surface);
   result.surface = params.edge_mm > 0.0 ? resample(triangles, params.edge_mm) : triangles;
   const HalfedgeMesh mesh(result.surface);
   const Frames frames = triangle_frames(mesh);

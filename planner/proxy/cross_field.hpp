@@ -67,6 +67,13 @@ struct CrossField {
 // std::logic_error. Deterministic.
 CrossField smoothest_cross_field(const PolygonMesh& surface, const CrossFieldParams& params);
 
+// Each polygon as a fan of triangles from the first corner whose diagonals
+// are not already edges of the mesh: a diagonal that repeats an edge (two
+// quads sharing two sides at a valence-2 vertex) would join three
+// triangles and break the manifold. `resample` fans polygons from their
+// first corner whatever the diagonals; give it this mesh instead.
+PolygonMesh fan_triangulated(const PolygonMesh& mesh);
+
 // What the cut stage reports of a field.
 struct FieldSingularities {
   int count = 0;                // interior vertices with a non-zero index

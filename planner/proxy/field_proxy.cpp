@@ -243,7 +243,7 @@ std::vector<int> field_vanishing_corners(const PolygonMesh& triangles,
 
 FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams& params) {
   FieldProxy result;
-  result.mesh = resample(surface, params.edge_mm);
+  result.mesh = resample(fan_triangulated(surface), params.edge_mm);
   result.valence_flips =
       equalize_valences(result.mesh, params.flip_bend_deg, params.min_corner_deg);
   CrossFieldParams field_params;

@@ -6,9 +6,12 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
+#include <optional>
 #include <set>
 #include <string>
 
+#include "planner/cut/cut_stage.hpp"
 #include "tests/planner/shared_cuts.hpp"
 #include "tests/test_support.hpp"
 
@@ -39,6 +42,39 @@ TEST_P(SharedCutTest, CutsTheMeshIntoOneDiscForTheSuitesThatUseIt) {
     return;
   }
   shared_cuts::cut_into(shared, GetParam(), fs::path(cuts) / GetParam());
+}
+
+// The field-guided proxy (docs/cutting.md, "The proxy Q") at 100 mm along
+// the longest side, grown as a square: on every closed mesh Q carries no
+// more singular vertices than 1.2 times the smoothest field's (counted in
+// units of index: a pole of index +4 needs four +1 vertices) plus 4, and
+// at most a tenth of them sit in adjacent +1/-1 pairs. The cut's figures
+// are printed; docs/results.md has their table.
+TEST_P(SharedCutTest, TheFieldProxyCarriesNoMoreSingularitiesThanTheField) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const fs::path file = shared / "meshes" / (GetParam() + ".obj");
+  knitout::DiagnosticSink sink;
+  std::optional<PolygonMesh> mesh = load_mesh(file.string(), {}, sink);
+  ASSERT_TRUE(mesh) << file;
+  const Vec3 size = bounding_box_size(*mesh);
+  for (Vec3& p : mesh->positions) p *= 100.0 / size.maxCoeff();
+  CutStageParams params;
+  params.proxy.method = ProxyMethod::Field;
+  params.cut.square_growth = true;
+  const Cut cut = cut_garment(*mesh, params);  // verify_cut runs inside
+  int field = 0;
+  for (const auto& [index, count] : cut.report.field.singularities.by_index)
+    field += std::abs(index) * count;
+  const int singular = static_cast<int>(cut.mesh.labels.singular_vertices.size());
+  const int pairs = adjacent_opposite_pairs(cut.mesh.proxy, cut.mesh.labels);
+  const int arcs = static_cast<int>(cut.mesh.arcs.size());
+  std::cout << GetParam() << ": proxy " << cut.report.proxy_method << ", field " << field
+            << ", singular " << singular << ", adjacent pairs " << pairs << ", arcs " << arcs
+            << (arcs <= 1.3 * singular + 4 ? "" : " (more than 1.3 x singular + 4)") << "\n";
+  EXPECT_TRUE(check_disc(labelled_disc(cut.mesh)).empty()) << file << ": the cut is not a disc";
+  if (cut.report.field.boundary_loops != 0) return;  // the ratios are for closed surfaces
+  EXPECT_LE(singular, 1.2 * field + 4) << file;
+  EXPECT_LE(pairs, 0.1 * singular) << file;
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, SharedCutTest, ::testing::ValuesIn(shared_cuts::mesh_names()),
