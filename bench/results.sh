@@ -33,5 +33,10 @@ for name in bunny-qd fertility-qd rockerarm-qd torus-qd; do
 done
 
 python3 bench/results_tables.py "$out" "$command" "$machine" "$commit" >"$results.tmp"
+# The proxy made both ways (docs/cutting.md, "The proxy Q").
+{
+  printf '\n## The proxy: singularities and cut-arcs\n\n'
+  OUT="$out/proxy" bench/proxy_singularities.sh "$build"
+} >>"$results.tmp"
 mv "$results.tmp" "$results"
 echo "wrote $results" >&2
