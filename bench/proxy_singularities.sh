@@ -9,7 +9,7 @@
 # mesh the smoothest field's singularities on the surface, Q's singular
 # vertices, adjacent +1/-1 pairs, cut-arcs, mean arc length (edges and mm) and
 # chord / length, each as "remesh → field", and which closed meshes meet the
-# ratios of issue 36's "done when".
+# targets of docs/cutting.md, §9 (singular vertices, arcs, adjacent pairs).
 #   bench/proxy_singularities.sh [BUILD_DIR]      (default build; needs ../shared)
 # Environment: OUT the work folder (default a temporary one, removed), JOBS
 # meshes cut at once (default 2), MESHES file names instead of every mesh,

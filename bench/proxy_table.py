@@ -4,7 +4,7 @@
 proxy_table.py OUT COMMAND NAME...: OUT holds NAME-remesh/ and NAME-field/
 cut folders; prints Markdown: per mesh the field's singularities, Q's
 singular vertices, adjacent +1/-1 pairs, arcs, mean edges and mm per arc,
-mean chord / length, as "remesh -> field", then the ratios of issue 36 on
+mean chord / length, as "remesh -> field", then the targets of docs/cutting.md §9 on
 the closed meshes with the field proxy.
 """
 import json
