@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -75,22 +76,71 @@ TEST(FieldProxyTest, ValenceFlipsEqualizeAFlatGridAndKeepItAManifold) {
   }
 }
 
-TEST(FieldProxyTest, NoFlipFoldsTheSurfaceMoreThanTheBendAllows) {
-  // Two triangles over a right-angled ridge: the flip would improve no
-  // valence worth a 90 degree fold across the new edge.
-  PolygonMesh mesh = triangulated(test_meshes::cube(3));
-  const PolygonMesh before = mesh;
-  equalize_valences(mesh, 0.0, 10.0);
-  // With no fold allowed only flat pairs may flip: no vertex leaves its plane's side.
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const auto& face = mesh.faces[f];
-    const Vec3 n = (mesh.positions[at(face[1])] - mesh.positions[at(face[0])])
-                       .cross(mesh.positions[at(face[2])] - mesh.positions[at(face[0])]);
-    int axes = 0;
-    for (int k = 0; k < 3; ++k) axes += std::abs(n[k]) > 1e-9 ? 1 : 0;
-    EXPECT_EQ(axes, 1) << "face " << f << " spans two sides of the cube";
+// A right-angled fold: edge p-q (vertices 0 and 1) on the fold line,
+// triangle p-q-c flat in z = 0, triangle q-p-d raised in x = 0, and fans
+// that give p and q valence 8 while c and d have 3. Flipping p-q to c-d
+// evens the valences but bends the new triangles by 109 degrees.
+PolygonMesh fold() {
+  PolygonMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(-1, 0.5, 0), Vec3(0, 0.5, 1)};
+  auto add = [&](const Vec3& p) {
+    mesh.positions.push_back(p);
+    return static_cast<int>(mesh.positions.size()) - 1;
+  };
+  // Each triangle turned to face `normal`.
+  auto face = [&](int a, int b, int c, const Vec3& normal) {
+    const Vec3 n = (mesh.positions[at(b)] - mesh.positions[at(a)])
+                       .cross(mesh.positions[at(c)] - mesh.positions[at(a)]);
+    if (n.dot(normal) >= 0) {
+      mesh.faces.push_back({a, b, c});
+    } else {
+      mesh.faces.push_back({a, c, b});
+    }
+  };
+  const Vec3 up = Vec3::UnitZ(), out = -Vec3::UnitX();
+  face(0, 1, 2, up);
+  face(1, 0, 3, out);
+  // Fans: p's below y = 0, q's above y = 1, on both halves.
+  for (const int end : {0, 1}) {
+    const double sign = end == 0 ? -1.0 : 1.0;
+    const double y = end == 0 ? 0.0 : 1.0;
+    int previous = 2;
+    for (const double a : {0.3, 0.8, 1.3}) {
+      const int next = add(Vec3(-std::cos(a), y + sign * std::sin(a), 0));
+      face(end, previous, next, up);
+      previous = next;
+    }
+    previous = 3;
+    for (const double a : {0.6, 1.2}) {
+      const int next = add(Vec3(0, y + sign * std::sin(a), std::cos(a)));
+      face(end, previous, next, out);
+      previous = next;
+    }
   }
-  EXPECT_EQ(mesh.faces.size(), before.faces.size());
+  return mesh;
+}
+
+// The fold's faces that hold both c and d (the flipped edge).
+int faces_across_the_fold(const PolygonMesh& mesh) {
+  int across = 0;
+  for (const auto& f : mesh.faces) {
+    const bool c = std::find(f.begin(), f.end(), 2) != f.end();
+    const bool d = std::find(f.begin(), f.end(), 3) != f.end();
+    across += c && d ? 1 : 0;
+  }
+  return across;
+}
+
+TEST(FieldProxyTest, NoFlipFoldsTheSurfaceMoreThanTheBendAllows) {
+  const PolygonMesh mesh = fold();
+  knitout::DiagnosticSink sink;
+  ASSERT_TRUE(check_mesh(mesh, "fold", sink));
+  PolygonMesh loose = mesh;
+  equalize_valences(loose, 180.0, 10.0);
+  EXPECT_EQ(faces_across_the_fold(loose), 2);  // allowed any fold, the flip is made
+  PolygonMesh strict = mesh;
+  equalize_valences(strict, 30.0, 10.0);
+  EXPECT_EQ(faces_across_the_fold(strict), 0);
 }
 
 TEST(FieldProxyTest, MisalignmentIsNilAlongTheFieldAndOneAtFortyFiveDegrees) {
