@@ -8,7 +8,8 @@
 # bench/proxy_table.py prints a Markdown table (the command at its head): per
 # mesh the smoothest field's singularities on the surface, Q's singular
 # vertices, adjacent +1/-1 pairs, cut-arcs, mean arc length (edges and mm) and
-# chord / length, each as "remesh → field", and which closed meshes meet the
+# chord / length and how far Q lies from the garment (its vertices and face
+# centroids, the farthest), each as "remesh → field", and which closed meshes meet the
 # targets of docs/cutting.md, §9 (singular vertices, arcs, adjacent pairs).
 #   bench/proxy_singularities.sh [BUILD_DIR]      (default build; needs ../shared)
 # Environment: OUT the work folder (default a temporary one, removed), JOBS

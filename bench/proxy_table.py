@@ -4,7 +4,8 @@
 proxy_table.py OUT COMMAND NAME...: OUT holds NAME-remesh/ and NAME-field/
 cut folders; prints Markdown: per mesh the field's singularities, Q's
 singular vertices, adjacent +1/-1 pairs, arcs, mean edges and mm per arc,
-mean chord / length, as "remesh -> field", then the targets of docs/cutting.md §9 on
+mean chord / length, the farthest distance of Q from the garment, as
+"remesh -> field", then the targets of docs/cutting.md §9 on
 the closed meshes with the field proxy.
 """
 import json
@@ -49,6 +50,7 @@ def load(folder):
         "mm_per_arc": length / len(arcs) if arcs else 0.0,
         "chord": sum(chords) / len(chords) if chords else 1.0,
         "method": proxy["method"],
+        "off": proxy.get("surface_distance_max_mm", float("nan")),
     }
 
 
@@ -62,8 +64,8 @@ def main():
     out, command, names = sys.argv[1], sys.argv[2], sys.argv[3:]
     print(f"`{command}`\n")
     print("| mesh | Q (remesh → field) | field (Σ\\|index\\|) | singular vertices of Q | adjacent pairs | arcs "
-          "| edges / arc | mm / arc | chord / length |")
-    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+          "| edges / arc | mm / arc | chord / length | Q off the surface, mm |")
+    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     rows = []
     for name in names:
         a = load(os.path.join(out, name + "-remesh"))
@@ -74,7 +76,7 @@ def main():
         print(f"| {name} | {method} | {field} | {pair(a, b, 'singular')} | "
               f"{pair(a, b, 'pairs')} | {pair(a, b, 'arcs')} | "
               f"{pair(a, b, 'edges_per_arc', '{:.2f}')} | {pair(a, b, 'mm_per_arc', '{:.1f}')} | "
-              f"{pair(a, b, 'chord', '{:.2f}')} |")
+              f"{pair(a, b, 'chord', '{:.2f}')} | {pair(a, b, 'off', '{:.2f}')} |")
     closed = [(n, b) for n, a, b in rows if b and b["closed"]]
     checks = [
         ("singular vertices ≤ 1.2 × field + 4", lambda r: r["singular"] <= 1.2 * r["field"] + 4),
@@ -86,6 +88,10 @@ def main():
         failing = [n for n, r in closed if not check(r)]
         print(f"- {label}: {len(closed) - len(failing)} of {len(closed)}" +
               (f" (not: {', '.join(failing)})" if failing else ""))
+    half_wale = 2.875 / 2
+    far = [n for n, a, b in rows if b and b["off"] > half_wale]
+    print(f"- Q within half a wale ({half_wale:.2f} mm at the default gauge) of the surface: "
+          f"{len(rows) - len(far)} of {len(rows)} meshes" + (f" (not: {', '.join(far)})" if far else ""))
     failed = [n for n, a, b in rows if not a or not b]
     if failed:
         print(f"\nNo cut: {', '.join(failed)}.")

@@ -114,6 +114,8 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
             {"input_verdict", r.input_verdict},
             {"valence_flips", r.valence_flips},
             {"field_misfit", r.field_misfit},
+            {"surface_distance_max_mm", r.surface_distance_max_mm},
+            {"surface_distance_mean_mm", r.surface_distance_mean_mm},
             {"irregular_vertices", q.count},
             {"singular_vertices", cut.labels.singular_vertices.size()},
             {"adjacent_pairs", adjacent_opposite_pairs(cut.proxy, cut.labels)},
@@ -185,6 +187,8 @@ CutReport report_from_json(const json& r) {
   report.input_verdict = proxy.value("input_verdict", std::string());
   report.valence_flips = proxy.value("valence_flips", 0);
   report.field_misfit = proxy.value("field_misfit", 0);
+  report.surface_distance_max_mm = proxy.value("surface_distance_max_mm", 0.0);
+  report.surface_distance_mean_mm = proxy.value("surface_distance_mean_mm", 0.0);
   const json field = r.value("field", json::object());
   report.field.edge_mm = field.value("edge_mm", 0.0);
   report.field.faces = field.value("faces", 0);

@@ -10,6 +10,7 @@
 
 #include "planner/common/index.hpp"
 #include "planner/mesh/mesh_io.hpp"
+#include "planner/mesh/surface_distance.hpp"
 #include "planner/pipeline.hpp"
 
 namespace planner {
@@ -118,6 +119,9 @@ Cut cut_garment(const PolygonMesh& garment, const CutStageParams& params) {
       report.proxy_seconds += seconds_since(start);
     }
   }
+  const SurfaceDistance off = distance_to_surface(proxy.mesh, garment);
+  report.surface_distance_max_mm = off.max_mm;
+  report.surface_distance_mean_mm = off.mean_mm;
   const std::vector<int> vanishing_corner = std::move(proxy.vanishing_corner);
   HalfedgeMesh q(std::move(proxy.mesh));
   take_proxy(proxy, report);

@@ -49,6 +49,10 @@ struct CutReport {
   std::string input_verdict;
   int valence_flips = 0;  // field proxy: edges flipped toward valence 6
   int field_misfit = 0;   // field proxy: quarter turns of Q's indices away from the field's
+  // How far Q (its vertices and face centroids) lies from the garment's
+  // surface, mm: the stitch mesh is built on Q's disc.
+  double surface_distance_max_mm = 0.0;
+  double surface_distance_mean_mm = 0.0;
   FieldReport field;
   CutParams params;
   int picture_px = 0;  // the size of cuts-3d.png's views as cut.json records it; 0 = not drawn

@@ -70,7 +70,8 @@ TEST_P(SharedCutTest, TheFieldProxyCarriesNoMoreSingularitiesThanTheField) {
   const int arcs = static_cast<int>(cut.mesh.arcs.size());
   std::cout << GetParam() << ": proxy " << cut.report.proxy_method << ", field " << field
             << ", singular " << singular << ", adjacent pairs " << pairs << ", arcs " << arcs
-            << (arcs <= 1.3 * singular + 4 ? "" : " (more than 1.3 x singular + 4)") << "\n";
+            << (arcs <= 1.3 * singular + 4 ? "" : " (more than 1.3 x singular + 4)") << ", Q up to "
+            << cut.report.surface_distance_max_mm << " mm off the surface\n";
   EXPECT_TRUE(check_disc(labelled_disc(cut.mesh)).empty()) << file << ": the cut is not a disc";
   if (cut.report.field.boundary_loops != 0) return;  // the ratios are for closed surfaces
   EXPECT_LE(singular, 1.2 * field + 4) << file;
