@@ -13,3 +13,5 @@ if [ -z "$out" ]; then
   trap 'rm -rf "$out"' EXIT
 fi
 mkdir -p "$out"
+
+source bench/mesh_helpers.sh

@@ -20,6 +20,7 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 shared=${WEARKNIT_SHARED:-../shared}
+source bench/mesh_helpers.sh
 
 usage() {
   echo "usage: bench/same_output.sh run BUILD_DIR OUT | compare OUT_A OUT_B" >&2
@@ -48,14 +49,11 @@ run() {
   : >"$record"
   : >"$times"
   local meshes=${MESHES:-$(cd "$shared/meshes" && ls ./*.obj | sed 's|^\./||')}
-  local mesh name dir longest scale stage code start
+  local mesh name dir scale stage code start
   for mesh in $meshes; do
     name=${mesh%.obj}
     dir=$out/knit/$name
-    longest=$(python3 -c 'import sys
-v = [list(map(float, l.split()[1:4])) for l in open(sys.argv[1]) if l.startswith("v ")]
-print(repr(max(max(p[i] for p in v) - min(p[i] for p in v) for i in range(3))))' "$shared/meshes/$mesh")
-    scale=$(python3 -c "print(repr(100 / $longest))")
+    scale=$(scale_to_100mm "$shared/meshes/$mesh")
     start=$(date +%s.%N)
     for stage in cut stitch-mesh schedule; do
       set +e

@@ -19,11 +19,8 @@ meshes=${MESHES:-$(cd "$shared/meshes" && ls ./*.obj | sed 's|^\./||')}
 
 # cut_both MESH: OUT/NAME-acute and OUT/NAME-optimal.
 cut_both() {
-  local mesh=$1 name=${1%.obj} longest scale rule
-  longest=$(python3 -c 'import sys
-v = [list(map(float, l.split()[1:4])) for l in open(sys.argv[1]) if l.startswith("v ")]
-print(repr(max(max(p[i] for p in v) - min(p[i] for p in v) for i in range(3))))' "$shared/meshes/$mesh")
-  scale=$(python3 -c "print(repr(100 / $longest))")
+  local mesh=$1 name=${1%.obj} scale rule
+  scale=$(scale_to_100mm "$shared/meshes/$mesh")
   for rule in acute optimal; do
     "$wearknit" cut "$shared/meshes/$mesh" --scale "$scale" --vanishing "$rule" \
       -o "$out/$name-$rule" -q --no-pictures >"$out/$name-$rule.log" 2>&1 ||
@@ -31,9 +28,6 @@ print(repr(max(max(p[i] for p in v) - min(p[i] for p in v) for i in range(3))))'
   done
 }
 
-for mesh in $meshes; do
-  while [ "$(jobs -rp | wc -l)" -ge "${JOBS:-2}" ]; do wait -n; done
-  cut_both "$mesh" &
-done
-wait
+# shellcheck disable=SC2086 # one mesh per word
+for_each_mesh cut_both $meshes
 python3 bench/vanishing_table.py "$out" "$command" $(echo "$meshes" | sed 's|\.obj||g')
