@@ -56,11 +56,12 @@ void report_field(const PolygonMesh& garment, double edge_mm, CutReport& report)
 // clean against the field's f singularities, at most min(clean_ratio * f,
 // clean_bound_ratio * f + clean_bound_extra) singular vertices with the
 // cut's vanishing rule, no more than clean_pairs_ratio of them in adjacent
-// +1/-1 pairs. Returns the verdict; `clean` says which.
-std::string judge_input(const PolygonMesh& input, const CutStageParams& params, int f,
-                        bool& clean) {
+// +1/-1 pairs. Returns the verdict; `clean` says which, and `vanishing_corner`
+// holds the corners of the labels judged, for the cut to reuse.
+std::string judge_input(const PolygonMesh& input, const CutStageParams& params, int f, bool& clean,
+                        std::vector<int>& vanishing_corner) {
   const HalfedgeMesh q(input);
-  const FieldLabels labels = label_field(q, params.cut.vanishing);
+  FieldLabels labels = label_field(q, params.cut.vanishing);
   const int singular = static_cast<int>(labels.singular_vertices.size());
   const int pairs = adjacent_opposite_pairs(q, labels);
   const ProxyParams& p = params.proxy;
@@ -71,6 +72,7 @@ std::string judge_input(const PolygonMesh& input, const CutStageParams& params, 
        << " singular vertices (" << pairs << " in adjacent +1/-1 pairs) against the field's " << f
        << "; clean is at most " << bound << " with at most " << 100 * p.clean_pairs_ratio
        << "% in pairs";
+  vanishing_corner = std::move(labels.vanishing_corner);
   return text.str();
 }
 
@@ -109,14 +111,18 @@ Cut cut_garment(const PolygonMesh& garment, const CutStageParams& params) {
   if (params.proxy.method == ProxyMethod::Field && proxy.method == "input") {
     start = std::chrono::steady_clock::now();
     bool clean = false;
-    report.input_verdict = judge_input(proxy.mesh, params, report.field.singularities.count, clean);
-    if (!clean) {
+    std::vector<int> judged;
+    report.input_verdict =
+        judge_input(proxy.mesh, params, report.field.singularities.count, clean, judged);
+    if (clean) {
+      proxy.vanishing_corner = std::move(judged);  // the cut's own rule gave them
+    } else {
       proxy = make_field_proxy(garment, params.proxy);
-      report.proxy_seconds += seconds_since(start);
+    }
+    report.proxy_seconds += seconds_since(start);
+    if (!clean) {  // the yardstick at the new proxy's scale
       report.field_seconds = 0.0;
       report_field(garment, proxy.edge_mm, report);
-    } else {
-      report.proxy_seconds += seconds_since(start);
     }
   }
   const SurfaceDistance off = distance_to_surface(proxy.mesh, garment);
