@@ -6,6 +6,7 @@
 #   knitout_parser_fuzz  tests/knitout/fuzz_inputs/
 #   dat_reader_fuzz      tests/backends/fuzz_inputs/
 #   device_frame_fuzz    tests/devices/fuzz_inputs/
+#   mesh_reader_fuzz     tests/planner/fuzz_inputs/
 # New crash inputs land in build-fuzz/crashes/TARGET/; after fixing the bug,
 # copy each into the target's fuzz_inputs/ folder so the tests replay it.
 set -euo pipefail
@@ -14,12 +15,13 @@ seconds=${1:-300}
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(knitout_parser_fuzz dat_reader_fuzz device_frame_fuzz)
+  targets=(knitout_parser_fuzz dat_reader_fuzz device_frame_fuzz mesh_reader_fuzz)
 fi
 declare -A inputs=(
   [knitout_parser_fuzz]=tests/knitout/fuzz_inputs
   [dat_reader_fuzz]=tests/backends/fuzz_inputs
   [device_frame_fuzz]=tests/devices/fuzz_inputs
+  [mesh_reader_fuzz]=tests/planner/fuzz_inputs
 )
 scripts/install-deps.sh
 launcher=()

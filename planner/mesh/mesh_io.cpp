@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <istream>
 #include <map>
 #include <numeric>
@@ -14,6 +17,8 @@
 #include <unordered_map>
 
 #include "planner/common/index.hpp"
+#include "planner/mesh/kind_reporter.hpp"
+#include "planner/mesh/mesh_scan.hpp"
 #include "planner/mesh/soup.hpp"
 
 namespace planner {
@@ -133,36 +138,6 @@ bool supported_extension(const std::string& ext) {
   return ext == "obj" || ext == "off" || ext == "ply" || ext == "stl";
 }
 
-// Caps the messages of one kind at 10 and then says how many were left out.
-class KindReporter {
- public:
-  KindReporter(knitout::DiagnosticSink& sink, const std::string& source, std::string code,
-               std::string plural)
-      : sink_(sink), source_(source), code_(std::move(code)), plural_(std::move(plural)) {}
-  void report(std::string message) {
-    ++count_;
-    if (count_ <= kMaxShown) sink_.error(source_, 0, 0, code_, std::move(message));
-  }
-  ~KindReporter() {
-    if (count_ > kMaxShown) {
-      sink_.error(source_, 0, 0, code_,
-                  std::to_string(count_ - kMaxShown) + " more " + plural_ + " not listed (" +
-                      std::to_string(count_) + " in all)");
-    }
-  }
-  KindReporter(const KindReporter&) = delete;
-  KindReporter& operator=(const KindReporter&) = delete;
-  int count() const { return count_; }
-
- private:
-  static constexpr int kMaxShown = 10;
-  knitout::DiagnosticSink& sink_;
-  const std::string& source_;
-  std::string code_;
-  std::string plural_;
-  int count_ = 0;
-};
-
 std::string vname(int v) {
   return "vertex " + std::to_string(v + 1);
 }
@@ -194,6 +169,18 @@ std::optional<PolygonMesh> read_polygon_soup(const std::string& path,
     sink.error(path, 0, 0, "P001", "cannot open file");
     return std::nullopt;
   }
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (in) bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) {
+      sink.error(path, 0, 0, "P001", "cannot read file");
+      return std::nullopt;
+    }
+  }
+  ScanResult scanned = scan_mesh_bytes(bytes, ext, path, sink);
+  if (!scanned.ok) return std::nullopt;
+  if (scanned.soup) return std::move(scanned.soup);
   auto mesh = import_soup([&](SoupImporter& importer, OpenMesh::IO::Options& options) {
     return OpenMesh::IO::IOManager().read(path, importer, options);
   });
@@ -210,8 +197,13 @@ std::optional<PolygonMesh> read_polygon_soup(std::istream& in, std::string_view 
     sink.error(source, 0, 0, "P001", "cannot read a mesh in format '" + ext + "'");
     return std::nullopt;
   }
+  const std::string bytes(std::istreambuf_iterator<char>(in), {});
+  ScanResult scanned = scan_mesh_bytes(bytes, ext, source, sink);
+  if (!scanned.ok) return std::nullopt;
+  if (scanned.soup) return std::move(scanned.soup);
+  std::istringstream copy(bytes, std::ios::in | std::ios::binary);
   auto mesh = import_soup([&](SoupImporter& importer, OpenMesh::IO::Options& options) {
-    return OpenMesh::IO::IOManager().read(in, "." + ext, importer, options);
+    return OpenMesh::IO::IOManager().read(copy, "." + ext, importer, options);
   });
   if (!mesh) sink.error(source, 0, 0, "P001", "cannot read the stream as " + ext);
   return mesh;
@@ -244,23 +236,30 @@ double area_epsilon(const PolygonMesh& mesh) {
   return 1e-14 * diagonal * diagonal;
 }
 
-// P010: faces with fewer than 3 corners, a corner out of range or used
-// twice, or zero area. Returns per face whether the connectivity checks can
-// use it: all but those with bad corners (a zero-area face still connects).
+// P005 (a corner naming no vertex) and P010 (fewer than 3 corners, a
+// corner used twice, zero area). Returns per face whether the connectivity
+// checks can use it: all but those with bad corners (a zero-area face still
+// connects).
 std::vector<bool> check_faces(const PolygonMesh& mesh, const std::string& source,
                               knitout::DiagnosticSink& sink) {
   const int nv = static_cast<int>(mesh.positions.size());
   const double epsilon = area_epsilon(mesh);
   std::vector<bool> usable(mesh.faces.size(), true);
   KindReporter degenerate(sink, source, "P010", "degenerate faces");
+  KindReporter corners(sink, source, "P005", "face corners naming no vertex");
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& face = mesh.faces[f];
     const std::string name = fname(static_cast<int>(f));
-    bool range_ok = true;
-    for (int v : face) range_ok = range_ok && v >= 0 && v < nv;
-    if (face.size() < 3 || !range_ok) {
+    const auto missing = std::find_if(face.begin(), face.end(), [nv](int v) { return v < 0 || v >= nv; });
+    if (missing != face.end()) {
+      corners.report(name + " refers to " + vname(*missing) + "; the mesh has " +
+                     std::to_string(nv) + (nv == 1 ? " vertex" : " vertices"));
+      usable[f] = false;
+      continue;
+    }
+    if (face.size() < 3) {
       degenerate.report(name + " has " + std::to_string(face.size()) +
-                        " corners; a face needs at least 3 distinct vertices");
+                        (face.size() == 1 ? " corner" : " corners") + "; a face needs at least 3");
       usable[f] = false;
       continue;
     }

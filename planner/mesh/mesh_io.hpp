@@ -4,7 +4,9 @@
 // Every problem a user can fix is a diagnostic naming the element: vertices
 // and faces are numbered from 1 in file order, as OBJ numbers them.
 // Codes (docs/diagnostics.md): P001 cannot read, P002 no faces, P003 bad
-// coordinate, P010 degenerate face, P011 non-manifold edge, P012
+// coordinate, P004 malformed element, P005 corner naming no vertex, P006
+// header claiming more than the file holds (P003-P006 from the scan before
+// reading, mesh_scan.hpp, with lines), P010 degenerate face, P011 non-manifold edge, P012
 // inconsistent orientation, P013 non-manifold vertex, P014 several
 // components, P015 unreferenced vertex.
 #pragma once
