@@ -49,6 +49,15 @@ std::string write_cut(const std::string& dir, const Cut& cut, const CutPictures&
                       std::uint64_t* id = nullptr);
 // P020 missing file, P021 malformed JSON, P022 files that disagree.
 std::optional<Cut> read_cut(const std::string& dir, knitout::DiagnosticSink& sink);
+// The units and scale the garment was read with, as the cut folder `dir`
+// records them (cut.json, report.input): what a wearer given later is read
+// with too, so that garment and wearer agree as `plan` makes them agree. mm
+// and 1 for a folder that records none (a garment made by hand).
+struct CutUnits {
+  std::string units = "mm";
+  double scale = 1.0;
+};
+CutUnits read_cut_units(const std::string& dir);
 
 // ---- 3. Wearability (§5, §8.2) ---------------------------------------------
 // planner/wearability/: wearability_stage.hpp (Wearability,

@@ -1,9 +1,11 @@
 // wearknit assembly: (re)writes the assembly guide of a finished plan folder
 // (planner/assembly/assembly.hpp): assembly.svg, assembly.pdf and assembly-3d.png.
+#include <cmath>
 #include <filesystem>
 #include <ostream>
 
 #include "apps/wearknit/cli.hpp"
+#include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
 
 namespace wearknit::cli {
@@ -14,11 +16,18 @@ int run_assembly(const std::vector<std::string>& args, Context& context) {
   std::string dir;
   std::string wearer;
   std::string page_png;
+  std::string wearer_units;
+  double wearer_scale = 0;
   po::options_description options("options");
   options.add_options()("dir", po::value<std::string>(&dir)->required(),
                         "plan folder after wearknit schedule (and wearability)")(
       "wearer", po::value<std::string>(&wearer),
-      "the object the garment covers (OBJ), drawn in assembly-3d.png")(
+      "the object the garment covers (OBJ, OFF, PLY or STL), drawn in assembly-3d.png")(
+      "wearer-units", po::value<std::string>(&wearer_units),
+      "units of the wearer's file: mm, cm or m (default: the garment's, as the folder's cut "
+      "records them)")("wearer-scale", po::value<double>(&wearer_scale),
+                       "factor on the wearer's coordinates (default: the garment's --scale, "
+                       "as the folder's cut records it)")(
       "page-png", po::value<std::string>(&page_png),
       "N:OUT.png: also draw page N of the guide as a PNG picture (a preview)")(
       "quiet,q", "print nothing on success");
@@ -33,8 +42,20 @@ int run_assembly(const std::vector<std::string>& args, Context& context) {
     context.err << dir << ": error: [A001] not a folder\n";
     return kExitUsage;
   }
+  planner::CutUnits units = planner::read_cut_units(dir);
+  if (values.count("wearer-units")) units.units = wearer_units;
+  if (values.count("wearer-scale")) units.scale = wearer_scale;
+  const std::optional<double> mm_per_unit = planner::mm_per_unit(units.units);
+  if (!mm_per_unit || !(units.scale > 0) || !std::isfinite(units.scale)) {
+    context.err << "wearknit assembly: "
+                << (mm_per_unit ? std::string("--wearer-scale must be a positive number")
+                                : "--wearer-units takes mm, cm or m, not '" + units.units + "'")
+                << '\n';
+    return kExitUsage;
+  }
   planner::AssemblySummary summary;
-  const std::string failure = planner::write_assembly_guide(dir, wearer, &summary);
+  const std::string failure =
+      planner::write_assembly_guide(dir, wearer, &summary, *mm_per_unit * units.scale);
   if (!failure.empty()) {
     context.err << failure << '\n';
     // A missing file is a usage problem; content that does not hold together is invalid input.

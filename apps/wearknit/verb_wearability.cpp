@@ -2,11 +2,13 @@
 // laced (§5), by stripping the garment off the wearer in simulation; the
 // stage itself is planner::label_arcs (planner/pipeline.hpp).
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <ostream>
 
 #include "apps/wearknit/cli.hpp"
 #include "apps/wearknit/stage_options.hpp"
+#include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
 #include "planner/wearability/journal.hpp"
 #include "planner/wearability/wearability_io.hpp"
@@ -17,14 +19,20 @@ namespace po = boost::program_options;
 namespace fs = std::filesystem;
 
 int run_wearability(const std::vector<std::string>& args, Context& context) {
-  std::string dir, wearer_path, frames_dir, journal_path;
+  std::string dir, wearer_path, frames_dir, journal_path, wearer_units;
+  double wearer_scale = 0;
   WearabilityOptions wear;
   int frame_every = 10;
   po::options_description options("options");
   options.add_options()("dir", po::value<std::string>(&dir)->required(),
                         "cut folder (as `wearknit cut` writes it, or cut-mesh.obj and cut.json "
                         "made by hand)")("wearer", po::value<std::string>(&wearer_path)->required(),
-                                         "the rigid object (OBJ)")(
+                                         "the rigid object (OBJ, OFF, PLY or STL)")(
+      "wearer-units", po::value<std::string>(&wearer_units),
+      "units of the wearer's file: mm, cm or m (default: the garment's, as the cut folder "
+      "records them)")("wearer-scale", po::value<double>(&wearer_scale),
+                       "factor on the wearer's coordinates (default: the garment's --scale, "
+                       "as the cut folder records it)")(
       "seed", po::value<std::uint64_t>(&wear.params.test.seed)->default_value(1), "random seed");
   add_wearability_options(options, wear, "trials");
   add_threads_option(options, wear.params.test.threads);
@@ -46,6 +54,16 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   }
   std::string problem = check_wearability_options(values, wear);
   if (frame_every < 1) problem = "--frame-every must be positive";
+  // The wearer in millimetres, as the garment: its units and scale are the
+  // cut folder's unless given (`plan` reads both the same way).
+  planner::CutUnits units = planner::read_cut_units(dir);
+  if (values.count("wearer-units")) units.units = wearer_units;
+  if (values.count("wearer-scale")) units.scale = wearer_scale;
+  const std::optional<double> mm_per_unit = planner::mm_per_unit(units.units);
+  if (!mm_per_unit) problem = "--wearer-units takes mm, cm or m, not '" + units.units + "'";
+  if (!(units.scale > 0) || !std::isfinite(units.scale)) {
+    problem = "--wearer-scale must be a positive number";
+  }
   if (!problem.empty()) {
     context.err << "wearknit wearability: " << problem << '\n';
     return kExitUsage;
@@ -61,7 +79,17 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   } else {
     garment = planner::read_garment(dir, wear.params.cloth_vertices, sink);
   }
-  const auto wearer = planner::read_stage_mesh(wearer_path, sink);
+  auto wearer = planner::read_stage_mesh(wearer_path, sink);
+  if (wearer) {
+    for (planner::Vec3& p : wearer->positions) p *= *mm_per_unit * units.scale;
+    const planner::PolygonMesh* worn = cut       ? &cut->mesh.proxy.polygons()
+                                       : garment ? &*garment
+                                                 : nullptr;
+    if (worn != nullptr) {
+      const std::string disagreement = planner::size_disagreement(*worn, *wearer);
+      if (!disagreement.empty()) sink.warning(wearer_path, 0, 0, "W005", disagreement);
+    }
+  }
   print_diagnostics(context, sink.diagnostics(), DiagnosticFormat::Text);
   if (sink.has_errors()) {
     const bool missing = std::any_of(sink.diagnostics().begin(), sink.diagnostics().end(),

@@ -14,6 +14,8 @@
 #include "planner/assembly/assembly_page_layout.hpp"
 #include "planner/assembly/assembly_pages.hpp"
 #include "planner/assembly/assembly_picture.hpp"
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/pipeline.hpp"
 #include "planner/render/png.hpp"
 #include "planner/wearability/wearability_io.hpp"
 
@@ -36,7 +38,8 @@ struct Guide {
 };
 
 // Reads the folder and lays out the pages; throws Failure.
-void prepare(Guide& g, const fs::path& plan_dir, const std::string& wearer_path) {
+void prepare(Guide& g, const fs::path& plan_dir, const std::string& wearer_path,
+             std::optional<double> wearer_mm_per_unit) {
   assembly::load(g.model, plan_dir);
   if (!wearer_path.empty()) {
     knitout::DiagnosticSink sink;
@@ -44,6 +47,11 @@ void prepare(Guide& g, const fs::path& plan_dir, const std::string& wearer_path)
     if (!g.wearer)
       assembly::fail(wearer_path, "A005",
                      "the wearer cannot be read: " + assembly::first_error(sink));
+    if (!wearer_mm_per_unit) {
+      const CutUnits units = read_cut_units(plan_dir.string());
+      wearer_mm_per_unit = mm_per_unit(units.units).value_or(1.0) * units.scale;
+    }
+    for (Vec3& p : g.wearer->positions) p *= *wearer_mm_per_unit;
   }
   g.pages = assembly::lay_out_pages(
       g.model, "Assembly guide: " + fs::absolute(plan_dir).lexically_normal().filename().string());
@@ -74,10 +82,11 @@ void write_pdf(std::ostream& out, const Model& m, const PageLayout& pages) {
 }  // namespace
 
 std::string write_assembly_guide(const fs::path& plan_dir, const std::string& wearer_path,
-                                 AssemblySummary* summary) {
+                                 AssemblySummary* summary,
+                                 std::optional<double> wearer_mm_per_unit) {
   Guide g;
   try {
-    prepare(g, plan_dir, wearer_path);
+    prepare(g, plan_dir, wearer_path, wearer_mm_per_unit);
   } catch (const Failure& e) {
     return e.what();
   } catch (const std::logic_error& e) {
@@ -113,7 +122,7 @@ std::string write_assembly_page_png(const fs::path& plan_dir, int page, const st
                                     double pixels_per_point) {
   Guide g;
   try {
-    prepare(g, plan_dir, "");
+    prepare(g, plan_dir, "", std::nullopt);
   } catch (const Failure& e) {
     return e.what();
   }

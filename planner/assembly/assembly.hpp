@@ -26,6 +26,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace planner {
@@ -42,10 +43,13 @@ struct AssemblySummary {
 
 // Writes the guide; returns "" or the failure as `PATH: error: [A0xx]
 // message` (codes in docs/diagnostics.md). Nothing is written when the
-// folder cannot be read; every file is written atomically.
+// folder cannot be read; every file is written atomically. The wearer's
+// coordinates are multiplied by `wearer_mm_per_unit`, by default the units
+// and scale the folder's cut recorded for the garment (read_cut_units).
 std::string write_assembly_guide(const std::filesystem::path& plan_dir,
                                  const std::string& wearer_path,
-                                 AssemblySummary* summary = nullptr);
+                                 AssemblySummary* summary = nullptr,
+                                 std::optional<double> wearer_mm_per_unit = std::nullopt);
 
 // One page of the guide (1-based, as in the PDF) as a PNG picture, for
 // previews and documentation; `pixels_per_point` 1 gives 842 x 595 pixels.

@@ -255,8 +255,9 @@ std::string write_cut(const std::string& dir, const Cut& cut, const CutPictures&
   const std::pair<const char*, const std::string*> objs[] = {{"proxy.obj", &proxy},
                                                              {"cut-mesh.obj", &disc}};
   for (const auto& [name, text] : objs) {
+    const std::string* body = text;
     const std::string failure = knitout::write_file_atomically(
-        (base / name).string(), [&](std::ostream& out) { out << *text; });
+        (base / name).string(), [body](std::ostream& out) { out << *body; });
     if (!failure.empty()) return failure;
   }
   const std::pair<const char*, const json*> jsons[] = {{"labels.json", &labels},
@@ -270,6 +271,21 @@ std::string write_cut(const std::string& dir, const Cut& cut, const CutPictures&
   if (failure.empty())
     failure = draw_layout_2d(mesh, (base / "layout-2d.png").string(), pictures.panel_px * 5 / 3);
   return failure;
+}
+
+CutUnits read_cut_units(const std::string& dir) {
+  CutUnits out;
+  std::ifstream in(fs::path(dir) / "cut.json");
+  if (!in) return out;
+  const json cut = json::parse(in, nullptr, false);
+  if (!cut.is_object()) return out;
+  const json report = cut.value("report", json::object());
+  if (!report.is_object()) return out;
+  const json input = report.value("input", json::object());
+  if (!input.is_object()) return out;
+  if (auto u = input.find("units"); u != input.end() && u->is_string()) out.units = *u;
+  if (auto s = input.find("scale"); s != input.end() && s->is_number()) out.scale = *s;
+  return out;
 }
 
 std::optional<Cut> read_cut(const std::string& dir, knitout::DiagnosticSink& sink) {

@@ -1,9 +1,12 @@
 #include "planner/wearability/wearability_io.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <ostream>
+#include <sstream>
 
 #include "planner/common/hash.hpp"
 #include "planner/common/json_file.hpp"
@@ -22,6 +25,22 @@ std::optional<PolygonMesh> read_stage_mesh(const std::string& path, knitout::Dia
     return std::nullopt;
   }
   return mesh;
+}
+
+std::string size_disagreement(const PolygonMesh& garment, const PolygonMesh& wearer) {
+  const double g = bounding_box_size(garment).norm();
+  const double w = bounding_box_size(wearer).norm();
+  if (!(g > 0) || !(w > 0)) return {};
+  const double ratio = std::max(g / w, w / g);
+  if (ratio <= 1.25) return {};
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << "the garment (bounding box diagonal " << g
+       << " mm) and the wearer (" << w << " mm) differ in size by a factor of "
+       << std::setprecision(2) << ratio
+       << "; if the wearer is in other units or at another scale than the garment, give "
+          "--wearer-units and --wearer-scale (a garment that covers only part of its wearer "
+          "can differ this much)";
+  return text.str();
 }
 
 std::optional<CoverMesh> read_cover_mesh(const PolygonMesh& cut_mesh, const nlohmann::json& cuts,

@@ -33,6 +33,11 @@ namespace planner {
 // W004 when the file cannot be opened, W003 when it has no faces.
 std::optional<PolygonMesh> read_stage_mesh(const std::string& path, knitout::DiagnosticSink& sink);
 
+// W005 (a warning): the garment's and the wearer's bounding boxes differ in
+// size (their diagonals) by more than 25%, which a wearer read in other
+// units or at another scale than the garment makes. Empty when they agree.
+std::string size_disagreement(const PolygonMesh& garment, const PolygonMesh& wearer);
+
 // The CoverMesh of a cut-mesh and its cuts.json document. Diagnostics: W010
 // cuts.json is not the expected shape, W011 an arc edge that is not an edge
 // of the mesh (or another invalid element), both naming the arc.

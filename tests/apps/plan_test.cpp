@@ -193,6 +193,48 @@ TEST_F(PlanTest, TwoRunsGiveTheSameFiles) {
   }
 }
 
+// Garment and wearer in files at half size, brought to the fixture's size
+// by --scale 2: `plan` reads both at that scale, and so does the
+// wearability verb on a folder cut with --scale 2 (the wearer at the
+// garment's recorded units and scale), giving the same labels. Read at its
+// file's size instead (--wearer-scale 1), the wearer is half the garment's
+// size and the verb says so (W005).
+TEST_F(PlanTest, TheWearabilityVerbReadsTheWearerAtTheCutsScale) {
+  write_file(*dir_ / "half-wearer.obj", ellipsoid_obj(6, 1.6, 6));
+  write_file(*dir_ / "half-garment.obj", ellipsoid_obj(6.5, 1.55, 6));
+  const std::string wearer = (*dir_ / "half-wearer.obj").string();
+  const auto plan = run_wearknit("plan " + (*dir_ / "half-garment.obj").string() + " --wearer " +
+                                 wearer + " --scale 2 -o " + (*dir_ / "half-plan").string() +
+                                 " --wear-trials 2 --threads 2 --trials 5 --no-pictures -q");
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  const fs::path cut = *dir_ / "half-cut";
+  const auto cutting = run_wearknit("cut " + (*dir_ / "half-garment.obj").string() +
+                                    " --scale 2 --no-pictures -q -o " + cut.string());
+  ASSERT_EQ(cutting.exit_code, 0) << cutting.err;
+  const auto verb = run_wearknit("wearability " + cut.string() + " --wearer " + wearer +
+                                 " --trials 2 --threads 2 -q");
+  ASSERT_EQ(verb.exit_code, 0) << verb.err;
+  EXPECT_EQ(verb.err.find("W005"), std::string::npos) << verb.err;
+  const json planned = read_json(*dir_ / "half-plan/cuts.json");
+  const json labelled = read_json(cut / "cuts.json");
+  ASSERT_EQ(planned["arcs"].size(), labelled["arcs"].size());
+  ASSERT_GE(planned["arcs"].size(), 1u);
+  for (std::size_t i = 0; i < planned["arcs"].size(); ++i) {
+    EXPECT_EQ(planned["arcs"][i]["label"], labelled["arcs"][i]["label"]) << "arc " << i;
+  }
+  const auto unscaled = run_wearknit("wearability " + cut.string() + " --wearer " + wearer +
+                                     " --wearer-scale 1 --trials 1 --max-steps 50 -q");
+  EXPECT_NE(unscaled.err.find(wearer + ": warning: [W005] the garment (bounding box diagonal "),
+            std::string::npos)
+      << unscaled.err;
+  EXPECT_NE(unscaled.err.find("differ in size by a factor of 2."), std::string::npos)
+      << unscaled.err;
+  const auto bad = run_wearknit("wearability " + cut.string() + " --wearer " + wearer +
+                                " --wearer-units inch");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(bad.err, "wearknit wearability: --wearer-units takes mm, cm or m, not 'inch'\n");
+}
+
 TEST_F(PlanTest, AnUnreadableWearerFailsAtTheCut) {
   const auto result =
       run_wearknit("plan " + (*dir_ / "garment.obj").string() + " --wearer " +
