@@ -25,8 +25,9 @@ std::string describe_ops(const dat::DecodedPass& pass) {
   };
   std::vector<Group> groups;
   for (const auto& [column, colour] : pass.ops) {
+    const auto wanted = colour;
     auto found = std::find_if(groups.begin(), groups.end(),
-                              [&](const Group& g) { return g.colour == colour; });
+                              [wanted](const Group& g) { return g.colour == wanted; });
     if (found == groups.end()) {
       groups.push_back({colour, 1, column, column});
     } else {

@@ -68,8 +68,10 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
                    "wearknit demo: the wearer, an ellipsoid, in mm"},
         std::tuple{inputs.garment, planner::quad_ellipsoid(26.5, 1.75, 6),
                    "wearknit demo: the garment, the ellipsoid 1.5 mm further out, in mm"}}) {
+    const planner::PolygonMesh& mesh = shape;
+    const char* const title = header;
     const std::string failure = knitout::write_file_atomically(
-        path, [&](std::ostream& out) { planner::write_obj(out, shape, header); });
+        path, [&mesh, title](std::ostream& out) { planner::write_obj(out, mesh, title); });
     if (!failure.empty()) {
       context.err << "wearknit demo: " << failure << '\n';
       return kExitUsage;

@@ -197,7 +197,9 @@ std::vector<int> PieceEmitter::consolidation(const std::vector<LoopMove>& moves)
     for (int n : list) total += front_[n].size();
     // A bind-off tail waiting there to be knit through (loops that leave
     // the needle in these transfers do not count).
-    if (std::none_of(moves.begin(), moves.end(), [&](const LoopMove& m) { return m.from == to; }))
+    const int needle = to;
+    if (std::none_of(moves.begin(), moves.end(),
+                     [needle](const LoopMove& m) { return m.from == needle; }))
       total += front_[to].size();
     if (total <= kMaxLoops) continue;
     std::stable_sort(list.begin(), list.end(),
