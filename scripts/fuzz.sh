@@ -38,6 +38,6 @@ for target in "${targets[@]}"; do
   mkdir -p "$corpus" "build-fuzz/crashes/$target"
   cp "${inputs[$target]}"/* "$corpus"/
   echo "== $target, $seconds s"
-  build-fuzz/tests/fuzz/"$target" "$corpus" -max_total_time="$seconds" -max_len=8192 \
+  build-fuzz/tests/fuzz/"$target" "$corpus" -max_total_time="$seconds" -max_len=8192 -timeout=20 \
     -artifact_prefix="build-fuzz/crashes/$target/" -print_final_stats=1
 done

@@ -419,13 +419,16 @@ std::size_t ply_type_size(std::string_view type) {
   return 0;
 }
 
-// PLY: the header's element counts against the bytes after it (each
-// element at least its fixed-size properties, a face at least 3 corners;
-// in ASCII at least two characters per value). The body is left to
-// OpenMesh; check_mesh names bad corners there.
+// PLY: the header line by line (OpenMesh's reader loops for ever on a
+// header line it does not know or a header without end_header), then the
+// element counts against the bytes after it (each element at least its
+// fixed-size properties, a face at least 3 corners; in ASCII at least two
+// characters per value). The body is left to OpenMesh; check_mesh names
+// bad corners there.
 void scan_ply(std::string_view bytes, Faults& faults) {
   Lines lines(bytes);
   bool binary = false;
+  bool format = false;
   struct Element {
     std::string_view name;
     std::int64_t count = 0;
@@ -434,42 +437,63 @@ void scan_ply(std::string_view bytes, Faults& faults) {
   };
   std::vector<Element> elements;
   bool ended = false;
+  auto bad = [&](const std::string& what) {
+    faults.malformed.report("PLY header: " + what, lines.number());
+  };
   while (auto line = lines.next()) {
     const std::vector<std::string_view> w = words(*line);
     if (lines.number() == 1) {
-      if (w.empty() || w[0] != "ply") {
-        faults.malformed.report("the file does not start with `ply`", 1);
+      if (w.size() != 1 || w[0] != "ply") {
+        bad("the file does not start with a line `ply`");
         return;
       }
       continue;
     }
-    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w.empty()) continue;
+    if (w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "end_header") {
       ended = true;
       break;
     }
-    if (w[0] == "format" && w.size() >= 2) {
+    if (w[0] == "format") {
+      if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" &&
+                            w[1] != "binary_big_endian")) {
+        bad(quoted(*line) + " is not `format ascii|binary_little_endian|binary_big_endian 1.0`");
+        return;
+      }
       binary = w[1] != "ascii";
-    } else if (w[0] == "element" && w.size() >= 3) {
-      const std::optional<std::int64_t> c = integer(w[2]);
+      format = true;
+    } else if (w[0] == "element") {
+      const std::optional<std::int64_t> c = w.size() == 3 ? integer(w[2]) : std::nullopt;
       if (!c || *c < 0) {
-        faults.malformed.report("element " + quoted(w[1]) + " has the count " + quoted(w[2]) +
-                                    "; a count is a whole number",
-                                lines.number());
+        bad(quoted(*line) + " is not `element NAME COUNT` with a whole number");
         return;
       }
       elements.push_back({w[1], *c, lines.number(), 0});
     } else if (w[0] == "property" && !elements.empty()) {
       Element& e = elements.back();
-      if (w.size() >= 5 && w[1] == "list") {
+      if (w.size() == 5 && w[1] == "list" && ply_type_size(w[2]) > 0 && ply_type_size(w[3]) > 0) {
         const std::uint64_t corners = e.name == "face" ? 3 : 0;
         e.least += binary ? ply_type_size(w[2]) + corners * ply_type_size(w[3]) : 2 + 2 * corners;
-      } else if (w.size() >= 3) {
+      } else if (w.size() == 3 && ply_type_size(w[1]) > 0) {
         e.least += binary ? ply_type_size(w[1]) : 2;
+      } else {
+        bad(quoted(*line) + " is not `property TYPE NAME` or `property list TYPE TYPE NAME` "
+                            "with known types");
+        return;
       }
+    } else {
+      bad(quoted(*line) + " is not a header line (format, element, property, comment, "
+                          "end_header)");
+      return;
     }
   }
-  if (!ended) return;  // OpenMesh says the file cannot be read (P001)
+  if (!ended || !format) {
+    faults.malformed.report(std::string("PLY header: ") +
+                                (ended ? "no `format` line" : "no `end_header` line"),
+                            ended ? 1 : lines.number());
+    return;
+  }
   const std::uint64_t left = bytes.size() - lines.offset();
   std::uint64_t need = 0;
   for (const Element& e : elements) {

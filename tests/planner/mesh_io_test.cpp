@@ -247,6 +247,23 @@ TEST(MeshScanTest, MalformedLinesAndShortFacesAreNamed) {
             "m.obj:5: error: [P004] face 2: corner `x` is not a vertex number");
 }
 
+// OpenMesh's PLY reader loops for ever on a header line it does not know
+// and on a header without end_header: the scan names the line first.
+TEST(MeshScanTest, PlyHeaderLinesOpenMeshCannotReadAreNamed) {
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n";
+  const auto unknown = check_text(head + "elemenle_endian 1.0\nend_header\n", "ply");
+  ASSERT_FALSE(unknown.ok);
+  EXPECT_EQ(unknown.messages.at(0),
+            "m.ply:5: error: [P004] PLY header: `elemenle_endian 1.0` is not a header line "
+            "(format, element, property, comment, end_header)");
+  const auto unended = check_text(head, "ply");
+  ASSERT_FALSE(unended.ok);
+  EXPECT_EQ(unended.messages.at(0), "m.ply:4: error: [P004] PLY header: no `end_header` line");
+  const auto type = check_text(head + "property quaternion q\nend_header\n", "ply");
+  ASSERT_FALSE(type.ok);
+  EXPECT_EQ(type.messages.at(0).substr(0, 44), "m.ply:5: error: [P004] PLY header: `property");
+}
+
 // Every format's well-formed twin reads: the scan refuses nothing valid.
 TEST(MeshScanTest, WellFormedFilesOfEveryFormatRead) {
   EXPECT_TRUE(check_text("# c\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3//1\n",
