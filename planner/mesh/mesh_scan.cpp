@@ -43,9 +43,10 @@ class Lines {
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
-// Whitespace-separated words of a line, up to a `#` comment.
-std::vector<std::string_view> words(std::string_view line) {
-  const std::size_t hash = line.find('#');
+// Whitespace-separated words of a line, up to a `#` comment (OBJ, OFF,
+// STL; PLY has no such comments: `comments` false).
+std::vector<std::string_view> words(std::string_view line, bool comments = true) {
+  const std::size_t hash = comments ? line.find('#') : std::string_view::npos;
   if (hash != std::string_view::npos) line = line.substr(0, hash);
   std::vector<std::string_view> out;
   std::size_t i = 0;
@@ -441,7 +442,7 @@ void scan_ply(std::string_view bytes, Faults& faults) {
     faults.malformed.report("PLY header: " + what, lines.number());
   };
   while (auto line = lines.next()) {
-    const std::vector<std::string_view> w = words(*line);
+    const std::vector<std::string_view> w = words(*line, false);
     if (lines.number() == 1) {
       if (w.size() != 1 || w[0] != "ply") {
         bad("the file does not start with a line `ply`");
@@ -456,8 +457,8 @@ void scan_ply(std::string_view bytes, Faults& faults) {
       break;
     }
     if (w[0] == "format") {
-      if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" &&
-                            w[1] != "binary_big_endian")) {
+      if (w.size() != 3 || w[2] != "1.0" ||
+          (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian")) {
         bad(quoted(*line) + " is not `format ascii|binary_little_endian|binary_big_endian 1.0`");
         return;
       }

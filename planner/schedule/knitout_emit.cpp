@@ -292,7 +292,9 @@ EmittedPiece emit_piece(const StitchMesh& mesh, const Schedule& s, std::size_t p
   if (hi - lo + 1 > params.machine_needles)
     throw ScheduleError("piece " + std::to_string(piece + 1) + " is " +
                         std::to_string(hi - lo + 1) + " needles wide; the machine has " +
-                        std::to_string(params.machine_needles));
+                        std::to_string(params.machine_needles) +
+                        ": make the garment smaller (plan --size-mm, cut --scale) or knit it "
+                        "at a coarser gauge (fewer needles per inch)");
   PieceEmitter emitter(mesh, s, params, params.first_needle - lo);
   return emitter.run(p);
 }

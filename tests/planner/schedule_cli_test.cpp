@@ -125,7 +125,9 @@ TEST(ScheduleCliTest, UnschedulableMeshIsInvalidInput) {
   const auto result = wearknit::test::run_wearknit("schedule " + dir.string() + " --trials 1");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err, (dir / "stitch-mesh.smobj").string() +
-                            ": error: [S910] piece 1 is 600 needles wide; the machine has 540\n");
+                            ": error: [S910] piece 1 is 600 needles wide; the machine has 540: "
+                            "make the garment smaller (plan --size-mm, cut --scale) or knit it "
+                            "at a coarser gauge (fewer needles per inch)\n");
   EXPECT_FALSE(fs::exists(dir / "pieces"));
 }
 
