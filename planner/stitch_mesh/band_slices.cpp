@@ -3,8 +3,11 @@
 // points added on the boundary for row ends.
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <map>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
@@ -223,6 +226,18 @@ bool Strips::has_hole() const {
                      [](const auto& entry) { return entry.second.size() > 1; });
 }
 
+namespace {
+
+// A point of the disc as "(x, y, z) mm" for a message.
+std::string point_mm(const Vec3& p) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << '(' << p.x() << ", " << p.y() << ", " << p.z()
+       << ") mm";
+  return text.str();
+}
+
+}  // namespace
+
 Strips find_strips(const BandSlices& slices) {
   Strips strips;
   // Uniting the larger root under the smaller keeps each strip's root its
@@ -250,11 +265,17 @@ Strips find_strips(const BandSlices& slices) {
       int guard = 0;
       while (!on_boundary(c)) {
         c = slices.next(slices.twin(c));
-        if (++guard > 100000) throw std::logic_error("stitch meshing: vertex walk does not end");
+        if (++guard > 100000) {
+          throw std::runtime_error("the rows meet in a point the strips cannot go round, at " +
+                                   point_mm(slices.position(slices.from(c))));
+        }
       }
       h = c;
     } while (h != h0 && !visited[at(h)]);
-    if (h != h0) throw std::logic_error("stitch meshing: strip boundary does not close");
+    if (h != h0) {
+      throw std::runtime_error("a strip's boundary does not close, at " +
+                               point_mm(slices.position(slices.from(h0))));
+    }
     strips.loops[strips.root[at(slices.slice(h0))]].push_back(std::move(loop));
   }
   return strips;

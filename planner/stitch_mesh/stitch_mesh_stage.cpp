@@ -39,6 +39,11 @@ std::optional<StitchMeshOutcome> mesh_stitches(const Cut& cut, const StitchMeshS
       }
       sink.error(source, 0, 0, "P086", "no valid stitch mesh: " + p);
     }
+    // The rows depend on where the cuts run: another cut of the same
+    // garment usually meshes.
+    sink.error(source, 0, 0, "P086",
+               "what to change: cut the garment again with another --seed (or at another size); "
+               "the rows follow the cut, and another cut gives other rows");
     return std::nullopt;
   }
   StitchMeshOutcome outcome;

@@ -216,6 +216,22 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
     throw std::invalid_argument("make_stitch_mesh: course_mm and wale_mm must be positive");
   }
   StitchMeshResult result;
+  try {
+    mesh_disc(disc, params, result);
+  } catch (const std::runtime_error& e) {
+    // The rows of this disc cannot be made into strips (a failure of the
+    // method on this cut, named with its place), not a fault of the input.
+    result.mesh = StitchMesh{};
+    result.problems.push_back(e.what());
+  }
+  result.stats.total_seconds = seconds_since(start);
+  return result;
+}
+
+namespace stitch_meshing {
+
+void mesh_disc(const LabelledDisc& disc, const StitchMeshParams& params, StitchMeshResult& result) {
+  const auto start = std::chrono::steady_clock::now();
   std::vector<Triangle> tris = triangulate(disc);
   Eigen::VectorXd t = row_time(disc, tris, params, result.stats);
   result.stats.solve_seconds = seconds_since(start);
@@ -243,8 +259,8 @@ StitchMeshResult make_stitch_mesh(const LabelledDisc& disc, const StitchMeshPara
   result.stats.relax_sweeps = relax_positions(result.mesh, disc, params.relax_sweeps);
   result.stats.relax_seconds = seconds_since(relax_start);
   for (std::string& line : check(result.mesh)) result.problems.push_back(std::move(line));
-  result.stats.total_seconds = seconds_since(start);
-  return result;
 }
+
+}  // namespace stitch_meshing
 
 }  // namespace planner

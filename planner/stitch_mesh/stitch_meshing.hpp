@@ -34,6 +34,12 @@
 
 namespace planner::stitch_meshing {
 
+// The steps in order (stitch_mesher.cpp) into `result`: the mesh, its
+// figures and the problems of faces it could not make valid. Throws
+// std::runtime_error, naming the place, where the rows cannot be made
+// into strips at all; make_stitch_mesh reports that as a problem.
+void mesh_disc(const LabelledDisc& disc, const StitchMeshParams& params, StitchMeshResult& result);
+
 // ---------------------------------------------------------------------------
 // Geometry helpers (geometry.cpp).
 
