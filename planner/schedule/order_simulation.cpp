@@ -38,6 +38,7 @@ class OrderSimulation {
   }
 
   std::vector<std::pair<int, int>>& cuts() { return cuts_; }
+  std::vector<CutCause>& causes() { return causes_; }
   std::vector<int>& shift() { return shift_; }
 
  private:
@@ -220,6 +221,7 @@ class OrderSimulation {
         const int a = row_of(ce.lower), b = row_of(ce.upper);
         if (b == r) continue;
         cuts_.emplace_back(a, b);
+        causes_.push_back({r, n});
         // Every loop joining the two rows is bound off: none stays held.
         for (int e : held_between(a, b)) {
           auto& other = bucket_at(held_at(e));
@@ -255,6 +257,7 @@ class OrderSimulation {
   std::vector<std::pair<int, int>> covered_;  // see count_covered
   std::vector<char> in_patch_;                // see count_covered
   std::vector<std::pair<int, int>> cuts_;     // row pairs cut so far
+  std::vector<CutCause> causes_;              // why, per cut
   std::vector<AsideMove>* asides_;
 };
 
@@ -262,8 +265,10 @@ class OrderSimulation {
 
 std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::vector<int>& order,
                                                 int max_shift, std::vector<int>* patch_shift,
-                                                int max_aside, std::vector<AsideMove>* asides) {
+                                                int max_aside, std::vector<AsideMove>* asides,
+                                                std::vector<CutCause>* causes) {
   if (asides != nullptr) asides->clear();
+  if (causes != nullptr) causes->clear();
   if (s.edges.empty()) return {};
   int lo = 1 << 30, hi = -(1 << 30);
   for (const CourseEdge& e : s.edges) {
@@ -273,6 +278,7 @@ std::vector<std::pair<int, int>> simulate_order(const Schedule& s, const std::ve
   OrderSimulation simulation(s, lo, hi, std::max(0, max_shift), std::max(0, max_aside), asides);
   for (int p : order) simulation.knit_patch(p);
   if (patch_shift != nullptr) *patch_shift = std::move(simulation.shift());
+  if (causes != nullptr) *causes = std::move(simulation.causes());
   return std::move(simulation.cuts());
 }
 

@@ -240,7 +240,7 @@ std::vector<Refinement> refine_best(const Schedule& s, const ScheduleParams& par
 void keep_order(Schedule& s, const ScheduleParams& params, bool aside) {
   std::vector<int> shift;
   s.cut_rows = simulate_order(s, s.patch_order, params.max_patch_shift, &shift,
-                              aside ? params.max_aside : 0, &s.aside_moves);
+                              aside ? params.max_aside : 0, &s.aside_moves, &s.cut_causes);
   s.cuts = static_cast<int>(s.cut_rows.size());
   s.patch_shift = shift;
   for (CourseEdge& e : s.edges) {

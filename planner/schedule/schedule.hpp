@@ -112,6 +112,13 @@ struct Piece {
   std::vector<int> rows;  // in knitting order
 };
 
+// §7.3: why a row pair is cut: row `covering` is knit (in the order kept)
+// over `needle`, where loops from the lower row wait for the upper one.
+struct CutCause {
+  int covering = kNone;
+  int needle = 0;  // global front-bed index, as CourseEdge::needle
+};
+
 struct Schedule {
   std::vector<FaceLinks> faces;
   std::vector<CourseEdge> edges;
@@ -137,6 +144,7 @@ struct Schedule {
   int random_cuts = 0;                 // cuts of the best random order, before improve_order
   int cuts = 0;                        // cuts of the kept order (row pairs separated)
   std::vector<std::pair<int, int>> cut_rows;  // (lower row, upper row) per cut
+  std::vector<CutCause> cut_causes;           // why, per cut (as cut_rows)
   std::vector<Piece> pieces;
 };
 
@@ -160,13 +168,14 @@ void assign_needles(const StitchMesh& mesh, Schedule& schedule);
 // them (each row pair's loops together, at most max_aside needles from
 // where they were made); the shift per patch is stored in `patch_shift` and
 // the moves of held loops in `asides` when given (edges' needles are not
-// changed).
+// changed); why each pair is cut in `causes` when given.
 std::vector<std::pair<int, int>> simulate_order(const Schedule& schedule,
                                                 const std::vector<int>& order,
                                                 int max_shift = kMaxPatchShift,
                                                 std::vector<int>* patch_shift = nullptr,
                                                 int max_aside = kMaxAside,
-                                                std::vector<AsideMove>* asides = nullptr);
+                                                std::vector<AsideMove>* asides = nullptr,
+                                                std::vector<CutCause>* causes = nullptr);
 
 // §7.3: a random topological order of the patches for `trial`.
 std::vector<int> random_patch_order(const Schedule& schedule, std::uint64_t seed,

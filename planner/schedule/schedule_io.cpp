@@ -93,8 +93,14 @@ json schedule_cuts_json(const Schedule& schedule) {
         continue;
       edges.push_back({e.lower, e.upper});
     }
-    cuts.push_back(
-        {{"label", "sew"}, {"lower_row", lower}, {"upper_row", upper}, {"faces", edges}});
+    json cut = {{"label", "sew"}, {"lower_row", lower}, {"upper_row", upper}, {"faces", edges}};
+    const std::size_t i = cuts.size();
+    if (i < schedule.cut_causes.size() && schedule.cut_causes[i].covering != kNone) {
+      cut["why"] = {{"covering_row", schedule.cut_causes[i].covering},
+                    {"needle", schedule.cut_causes[i].needle},
+                    {"text", cut_cause_text(schedule, i)}};
+    }
+    cuts.push_back(std::move(cut));
   }
   return cuts;
 }

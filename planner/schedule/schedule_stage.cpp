@@ -117,6 +117,17 @@ std::string write_bed_view(const ScheduledPiece& piece, const std::string& path)
   return piece.check->view.write(path, *piece.check->machine, piece.name + ".k");
 }
 
+std::string cut_cause_text(const Schedule& s, std::size_t cut) {
+  const auto [lower, upper] = s.cut_rows.at(cut);
+  std::ostringstream text;
+  text << "cut " << cut + 1 << ": rows " << lower << " and " << upper << " are parted";
+  if (cut < s.cut_causes.size() && s.cut_causes[cut].covering != kNone) {
+    text << " because row " << s.cut_causes[cut].covering << " is knit before row " << upper
+         << " over the needle where the loops from row " << lower << " wait for it";
+  }
+  return text.str();
+}
+
 std::string describe(const ScheduleOutcome& outcome, const std::string& smobj_path,
                      const std::string& pieces_dir) {
   const Schedule& s = outcome.schedule;
@@ -129,6 +140,15 @@ std::string describe(const ScheduleOutcome& outcome, const std::string& smobj_pa
        << (outcome.pieces.size() == 1 ? "" : "s") << " in " << pieces_dir << " ("
        << stitch_pattern_name(outcome.params.emit.pattern) << ", about "
        << static_cast<int>(total / 60 + 0.5) << " min on the machine)\n";
+  // Why each cut is made (§7.3), the first few; schedule.json has them all.
+  constexpr std::size_t kCausesShown = 5;
+  for (std::size_t i = 0; i < s.cut_rows.size() && i < kCausesShown; ++i) {
+    text << "  " << cut_cause_text(s, i) << '\n';
+  }
+  if (s.cut_rows.size() > kCausesShown) {
+    text << "  ... and " << s.cut_rows.size() - kCausesShown
+         << " more cuts (schedule_cuts in cuts.json, each with its `why`)\n";
+  }
   return text.str();
 }
 

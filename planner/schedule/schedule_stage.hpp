@@ -59,8 +59,13 @@ struct ScheduleRecord {
 // Writes the bed view of a piece (SVG or PNG by the extension of `path`).
 std::string write_bed_view(const ScheduledPiece& piece, const std::string& path);
 
+// Why scheduling cut `cut` (an index of Schedule::cut_rows) is made, in
+// words: "cut 1: rows 12 and 13 are parted because row 40 is knit before row
+// 13 over the needle where the loops from row 12 wait for it".
+std::string cut_cause_text(const Schedule& s, std::size_t cut);
+
 // "PATH: N stitches, R rows, P patches; ... pieces in DIR/pieces (...)" as
-// the verb prints it.
+// the verb prints it, then why each cut is made (the first five).
 std::string describe(const ScheduleOutcome& outcome, const std::string& smobj_path,
                      const std::string& pieces_dir);
 

@@ -1,4 +1,5 @@
 #include "planner/schedule/schedule.hpp"
+#include "planner/schedule/schedule_stage.hpp"
 
 #include <gtest/gtest.h>
 
@@ -90,6 +91,26 @@ TEST(ScheduleTest, CrossingBranchesNeedOneCutWhateverTheOrder) {
   EXPECT_EQ(s.rows[static_cast<std::size_t>(s.cut_rows[0].first)].patch, s.patch_order[0]);
   EXPECT_EQ(s.rows[static_cast<std::size_t>(s.cut_rows[0].second)].patch, s.patch_order[2]);
   EXPECT_EQ(s.pieces.size(), 2u);
+  // Why: a row of the branch knit first (patch_order[1]) covers a needle
+  // where the base's loops wait for the other branch.
+  ASSERT_EQ(s.cut_causes.size(), 1u);
+  const CutCause& why = s.cut_causes[0];
+  ASSERT_NE(why.covering, kNone);
+  EXPECT_EQ(s.rows[static_cast<std::size_t>(why.covering)].patch, s.patch_order[1]);
+  bool waiting = false;
+  for (const CourseEdge& e : s.edges) {
+    waiting = waiting || (e.lower != kNone && e.upper != kNone &&
+                          s.face_row[static_cast<std::size_t>(e.lower)] == s.cut_rows[0].first &&
+                          s.face_row[static_cast<std::size_t>(e.upper)] == s.cut_rows[0].second &&
+                          e.needle == why.needle);
+  }
+  EXPECT_TRUE(waiting) << "no loop of the parted rows waits on needle " << why.needle;
+  EXPECT_EQ(cut_cause_text(s, 0),
+            "cut 1: rows " + std::to_string(s.cut_rows[0].first) + " and " +
+                std::to_string(s.cut_rows[0].second) + " are parted because row " +
+                std::to_string(why.covering) + " is knit before row " +
+                std::to_string(s.cut_rows[0].second) + " over the needle where the loops from row " +
+                std::to_string(s.cut_rows[0].first) + " wait for it");
 }
 
 TEST(ScheduleTest, BranchesCrossingBeyondTheShiftReachHaveTheHeldLoopsSetAside) {
