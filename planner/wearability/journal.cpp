@@ -14,7 +14,7 @@ namespace planner {
 
 namespace {
 
-constexpr const char* kMagic = "wearknit wearability journal 1 ";
+constexpr const char* kMagic = "wearknit wearability journal 2 ";
 
 std::string hex(std::uint64_t value) {
   std::ostringstream out;
@@ -60,7 +60,9 @@ std::string journal_line(std::uint64_t key, const TestResult& result) {
   out << std::setprecision(17);
   for (const TrialOutcome& t : result.trials) {
     out << ' ' << hex(t.seed) << ' ' << (t.success ? 1 : 0) << ' ' << t.steps << ' '
-        << (t.stalled ? 1 : 0) << ' ' << t.min_distance;
+        << (t.stalled ? 1 : 0) << ' ' << t.min_distance << ' ' << t.caught << ' '
+        << t.caught_at.x() << ' ' << t.caught_at.y() << ' ' << t.caught_at.z() << ' '
+        << t.caught_radius << ' ' << t.cloth_vertices;
   }
   const std::string body = out.str();
   return body + ' ' + hex(fingerprint(body));
@@ -87,7 +89,9 @@ std::optional<std::pair<std::uint64_t, TestResult>> parse_journal_line(const std
   result.trials.resize(trials);
   for (TrialOutcome& t : result.trials) {
     if (!read_hex(in, t.seed) || !read_flag(in, t.success) || !(in >> t.steps) ||
-        !read_flag(in, t.stalled) || !(in >> t.min_distance)) {
+        !read_flag(in, t.stalled) || !(in >> t.min_distance) || !(in >> t.caught) ||
+        !(in >> t.caught_at.x() >> t.caught_at.y() >> t.caught_at.z()) ||
+        !(in >> t.caught_radius >> t.cloth_vertices)) {
       return std::nullopt;
     }
   }

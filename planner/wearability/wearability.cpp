@@ -384,6 +384,10 @@ TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<boo
     outcome.steps = result.steps;
     outcome.stalled = result.stalled;
     outcome.min_distance = result.min_distance / wearer.scale();
+    outcome.caught = result.caught;
+    outcome.caught_at = result.caught_at;
+    outcome.caught_radius = result.caught_radius;
+    outcome.cloth_vertices = static_cast<int>(garment.positions.size());
     steps[t] = static_cast<std::uint64_t>(result.steps);
     projections[t] = result.projections;
     if (result.success) {

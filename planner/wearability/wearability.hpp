@@ -139,6 +139,12 @@ struct TrialOutcome {
   int steps = 0;
   bool stalled = false;     // stopped before the budget for lack of progress
   double min_distance = 0;  // at the end, as a fraction of the wearer's scale
+  // A failed trial: garment vertices still within the success distance of
+  // the wearer at the end, and their centroid in mm (where it is caught).
+  int caught = 0;
+  Vec3 caught_at = Vec3::Zero();
+  double caught_radius = 0;  // mm: the farthest of them from caught_at
+  int cloth_vertices = 0;    // of the garment simulated
 };
 
 struct TestResult {

@@ -126,6 +126,11 @@ nlohmann::json trials_json(const std::vector<TrialOutcome>& trials) {
                     {"steps", t.steps},
                     {"stalled", t.stalled},
                     {"min_distance", t.min_distance}});
+    if (!t.success && t.caught > 0) {
+      list.back()["caught_vertices"] = t.caught;
+      list.back()["caught_at_mm"] = {t.caught_at.x(), t.caught_at.y(), t.caught_at.z()};
+      list.back()["caught_radius_mm"] = t.caught_radius;
+    }
   }
   return list;
 }

@@ -212,6 +212,28 @@ std::string not_wearable_message(const Wearability& result) {
     text << " (--recut-limit " << result.params.recut_limit << ")";
   }
   text << "; every arc is labelled lace";
+  // Where the garment stays caught: of the trials of the cuts tried, the one
+  // that left the fewest vertices within reach of the wearer.
+  const TrialOutcome* best = nullptr;
+  for (const auto& a : result.attempts) {
+    for (const TrialOutcome& t : a.trials) {
+      if (!t.success && t.caught > 0 && (best == nullptr || t.caught < best->caught)) best = &t;
+    }
+  }
+  if (best != nullptr && 2 * best->caught > best->cloth_vertices) {
+    text << ". In the trial that got farthest, " << best->caught << " of the "
+         << best->cloth_vertices
+         << " cloth vertices are still on the wearer: the open garment does not move off it "
+            "at all (it encloses the wearer, or the trials are too short: --max-steps)";
+  } else if (best != nullptr) {
+    text << std::fixed << std::setprecision(1) << ". It stays caught within "
+         << best->caught_radius << " mm of (" << best->caught_at.x() << ", "
+         << best->caught_at.y() << ", " << best->caught_at.z() << ") mm (" << best->caught
+         << " of " << best->cloth_vertices
+         << " cloth vertices still on the wearer in the trial that got farthest): a shape that "
+            "locks the garment there (§9) comes off only with more cuts across that region or "
+            "a looser garment; a longer --max-steps may be enough where the trials end early";
+  }
   return text.str();
 }
 

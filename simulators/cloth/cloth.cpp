@@ -361,6 +361,20 @@ StripResult ClothSimulation::run(
   }
   result.min_distance = min_distance();
   result.projections = projections_;
+  if (!result.success) {
+    for (const Vec3& x : x_) {
+      if (wearer_.value(x) < goal) {
+        ++result.caught;
+        result.caught_at += x;
+      }
+    }
+    if (result.caught > 0) result.caught_at /= result.caught;
+    for (const Vec3& x : x_) {
+      if (wearer_.value(x) < goal) {
+        result.caught_radius = std::max(result.caught_radius, (x - result.caught_at).norm());
+      }
+    }
+  }
   return result;
 }
 

@@ -111,6 +111,12 @@ struct StripResult {
   bool stalled = false;           // stopped early for lack of progress (stall_switches)
   double min_distance = 0;        // least vertex distance to the wearer at the end, in scale units
   std::uint64_t projections = 0;  // spring and collision projections done
+  // At the end of a trial that failed: the garment's vertices still nearer
+  // the wearer than success asks (the success distance), and their centroid
+  // (where the garment is caught).
+  int caught = 0;
+  Vec3 caught_at = Vec3::Zero();
+  double caught_radius = 0;  // the farthest of them from their centroid
 };
 
 // The global force directions of one trial: axis indices 0..5 (+x, -x, +y,

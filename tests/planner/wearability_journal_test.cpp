@@ -106,7 +106,7 @@ TEST(WearabilityJournalTest, KeepsTheTestsOfTheSameContextOnly) {
     EXPECT_EQ(journal.loaded(), 0);
     EXPECT_FALSE(journal.find(5).has_value());
   }
-  EXPECT_EQ(read_file(path), "wearknit wearability journal 1 0000000000000008\n");
+  EXPECT_EQ(read_file(path), "wearknit wearability journal 2 0000000000000008\n");
   fs::remove_all(dir);
 }
 

@@ -10,6 +10,7 @@
 
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/wearability/wearability_io.hpp"
+#include "planner/wearability/wearability_stage.hpp"
 #include "tests/planner/cover_shapes.hpp"
 #include "tests/test_support.hpp"
 
@@ -402,6 +403,40 @@ TEST(WearabilityIoTest, ReportsBadArcsWithCodes) {
       planner::read_cover_mesh(*mesh, nlohmann::json::parse(R"([1, 2])"), "cuts.json", sink4));
   EXPECT_EQ(knitout::format(sink4.diagnostics().back()),
             "cuts.json: error: [W010] expected an object with an array \"arcs\"");
+}
+
+// W020 names where the garment is caught: of the failed trials of every cut
+// tried, the one that left the fewest cloth vertices on the wearer.
+TEST(WearabilityMessageTest, W020NamesWhereTheGarmentStaysCaught) {
+  planner::Wearability result;
+  result.params.test.trials = 2;
+  result.params.test.cloth.max_steps = 600;
+  planner::CutAttempt first;
+  first.cut_seed = 1;
+  planner::TrialOutcome wide;
+  wide.caught = 40;
+  wide.cloth_vertices = 500;
+  wide.caught_at = planner::Vec3(1, 2, 3);
+  wide.caught_radius = 9;
+  planner::TrialOutcome narrow = wide;
+  narrow.caught = 12;
+  narrow.caught_at = planner::Vec3(10.25, -4, 30);
+  narrow.caught_radius = 3.5;
+  first.trials = {wide, narrow};
+  result.attempts = {first};
+  const std::string text = planner::not_wearable_message(result);
+  EXPECT_NE(text.find("every arc is labelled lace. It stays caught within 3.5 mm of (10.2, -4.0, "
+                      "30.0) mm (12 of 500 cloth vertices still on the wearer in the trial that "
+                      "got farthest)"),
+            std::string::npos)
+      << text;
+  // A garment still on the wearer nearly everywhere says so instead of a point.
+  result.attempts[0].trials = {wide};
+  result.attempts[0].trials[0].caught = 400;
+  EXPECT_NE(planner::not_wearable_message(result).find(
+                "400 of the 500 cloth vertices are still on the wearer: the open garment does not "
+                "move off it at all"),
+            std::string::npos);
 }
 
 }  // namespace
