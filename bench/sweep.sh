@@ -13,7 +13,8 @@
 #   JOBS         runs at once (default 2)
 #   OUT          folder for the runs and the table (default a temporary one, removed)
 # Writes OUT/sweep.tsv (one line per run: mesh, seed, size_mm, result, stage,
-# code, exit, pieces, vm_rejected, seconds, message) and prints the summary:
+# code, exit, pieces, vm_rejected, seconds, message), OUT/sweep.md (the table
+# of docs/results.md, bench/sweep_table.py) and prints the summary:
 # runs, ok, failures by stage and code, internal errors. Exit 1 when there is
 # an internal error, a failure without a code or a piece the VM rejects.
 source "$(dirname "$0")/plan_common.sh"
@@ -112,6 +113,7 @@ for run in "${runs[@]}"; do
 done
 wait
 
+bench/sweep_table.py "$table" >"$out/sweep.md"
 python3 - "$table" <<'PY'
 import collections, sys
 rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1]) if l.strip()]
