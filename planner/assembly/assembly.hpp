@@ -47,8 +47,7 @@ struct AssemblySummary {
 // coordinates are multiplied by `wearer_mm_per_unit`, by default the units
 // and scale the folder's cut recorded for the garment (read_cut_units).
 std::string write_assembly_guide(const std::filesystem::path& plan_dir,
-                                 const std::string& wearer_path,
-                                 AssemblySummary* summary = nullptr,
+                                 const std::string& wearer_path, AssemblySummary* summary = nullptr,
                                  std::optional<double> wearer_mm_per_unit = std::nullopt);
 
 // One page of the guide (1-based, as in the PDF) as a PNG picture, for

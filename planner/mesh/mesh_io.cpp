@@ -8,12 +8,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
-#include <sstream>
 #include <istream>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <ostream>
+#include <sstream>
 #include <unordered_map>
 
 #include "planner/common/index.hpp"
@@ -250,7 +250,8 @@ std::vector<bool> check_faces(const PolygonMesh& mesh, const std::string& source
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& face = mesh.faces[f];
     const std::string name = fname(static_cast<int>(f));
-    const auto missing = std::find_if(face.begin(), face.end(), [nv](int v) { return v < 0 || v >= nv; });
+    const auto missing =
+        std::find_if(face.begin(), face.end(), [nv](int v) { return v < 0 || v >= nv; });
     if (missing != face.end()) {
       corners.report(name + " refers to " + vname(*missing) + "; the mesh has " +
                      std::to_string(nv) + (nv == 1 ? " vertex" : " vertices"));

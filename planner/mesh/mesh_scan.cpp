@@ -41,7 +41,9 @@ class Lines {
   std::uint32_t number_ = 0;
 };
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
 
 // Whitespace-separated words of a line, up to a `#` comment (OBJ, OFF,
 // STL; PLY has no such comments: `comments` false).
@@ -164,10 +166,10 @@ void scan_obj(std::string_view bytes, Faults& faults) {
       ++faces;
       const std::string name = "face " + std::to_string(faces);
       if (w.size() < 4) {
-        faults.short_face.report(name + " has " + plural(static_cast<std::int64_t>(w.size()) - 1,
-                                                         "corner", "corners") +
-                                     "; a face needs at least 3",
-                                 n);
+        faults.short_face.report(
+            name + " has " + plural(static_cast<std::int64_t>(w.size()) - 1, "corner", "corners") +
+                "; a face needs at least 3",
+            n);
       }
       for (std::size_t i = 1; i < w.size(); ++i) {
         const std::string_view index = w[i].substr(0, w[i].find('/'));
@@ -182,7 +184,8 @@ void scan_obj(std::string_view bytes, Faults& faults) {
         }
         const std::int64_t resolved = *k > 0 ? *k : vertices + *k + 1;
         if (resolved < 1 || resolved > total) {
-          faults.corner.report(name + " refers to vertex " + std::to_string(*k) + (*k < 0 ? " (" + std::to_string(resolved) + ")" : "") +
+          faults.corner.report(name + " refers to vertex " + std::to_string(*k) +
+                                   (*k < 0 ? " (" + std::to_string(resolved) + ")" : "") +
                                    "; the file has " + plural(total, "vertex", "vertices"),
                                n);
           break;
@@ -212,8 +215,7 @@ void read_binary_off(std::string_view bytes, std::size_t at, std::uint32_t line,
   const std::uint64_t left = bytes.size() - at;
   if (std::uint64_t{nv} * 12 + std::uint64_t{nf} * 20 > left) {
     faults.size.report("the header claims " + plural(nv, "vertex", "vertices") + " and " +
-                           plural(nf, "face", "faces") + ", more than the " +
-                           std::to_string(left) +
+                           plural(nf, "face", "faces") + ", more than the " + std::to_string(left) +
                            " bytes after it can hold; the header is wrong or the file is cut short",
                        line);
     return;
@@ -341,8 +343,7 @@ bool scan_off(std::string_view bytes, Faults& faults, PolygonMesh& soup) {
   if (nv > kMost || nf > kMost ||
       static_cast<std::uint64_t>(nv * 6 + nf * 8) > static_cast<std::uint64_t>(left)) {
     faults.size.report("the header claims " + plural(nv, "vertex", "vertices") + " and " +
-                           plural(nf, "face", "faces") + ", more than the " +
-                           std::to_string(left) +
+                           plural(nf, "face", "faces") + ", more than the " + std::to_string(left) +
                            " bytes after it can hold; the header is wrong or the file is cut short",
                        head_line);
     return false;
@@ -479,20 +480,22 @@ void scan_ply(std::string_view bytes, Faults& faults) {
       } else if (w.size() == 3 && ply_type_size(w[1]) > 0) {
         e.least += binary ? ply_type_size(w[1]) : 2;
       } else {
-        bad(quoted(*line) + " is not `property TYPE NAME` or `property list TYPE TYPE NAME` "
-                            "with known types");
+        bad(quoted(*line) +
+            " is not `property TYPE NAME` or `property list TYPE TYPE NAME` "
+            "with known types");
         return;
       }
     } else {
-      bad(quoted(*line) + " is not a header line (format, element, property, comment, "
-                          "end_header)");
+      bad(quoted(*line) +
+          " is not a header line (format, element, property, comment, "
+          "end_header)");
       return;
     }
   }
   if (!ended || !format) {
-    faults.malformed.report(std::string("PLY header: ") +
-                                (ended ? "no `format` line" : "no `end_header` line"),
-                            ended ? 1 : lines.number());
+    faults.malformed.report(
+        std::string("PLY header: ") + (ended ? "no `format` line" : "no `end_header` line"),
+        ended ? 1 : lines.number());
     return;
   }
   const std::uint64_t left = bytes.size() - lines.offset();
@@ -538,8 +541,8 @@ void scan_stl(std::string_view bytes, Faults& faults) {
   }
   if (84 + std::uint64_t{count} * 50 > bytes.size()) {
     faults.size.report("the header claims " + plural(count, "triangle", "triangles") + " (" +
-                       std::to_string(84 + std::uint64_t{count} * 50) + " bytes) but the file has " +
-                       std::to_string(bytes.size()) + " bytes");
+                       std::to_string(84 + std::uint64_t{count} * 50) +
+                       " bytes) but the file has " + std::to_string(bytes.size()) + " bytes");
     return;
   }
   for (std::uint32_t t = 0; t < count; ++t) {

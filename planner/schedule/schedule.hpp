@@ -169,13 +169,10 @@ void assign_needles(const StitchMesh& mesh, Schedule& schedule);
 // where they were made); the shift per patch is stored in `patch_shift` and
 // the moves of held loops in `asides` when given (edges' needles are not
 // changed); why each pair is cut in `causes` when given.
-std::vector<std::pair<int, int>> simulate_order(const Schedule& schedule,
-                                                const std::vector<int>& order,
-                                                int max_shift = kMaxPatchShift,
-                                                std::vector<int>* patch_shift = nullptr,
-                                                int max_aside = kMaxAside,
-                                                std::vector<AsideMove>* asides = nullptr,
-                                                std::vector<CutCause>* causes = nullptr);
+std::vector<std::pair<int, int>> simulate_order(
+    const Schedule& schedule, const std::vector<int>& order, int max_shift = kMaxPatchShift,
+    std::vector<int>* patch_shift = nullptr, int max_aside = kMaxAside,
+    std::vector<AsideMove>* asides = nullptr, std::vector<CutCause>* causes = nullptr);
 
 // §7.3: a random topological order of the patches for `trial`.
 std::vector<int> random_patch_order(const Schedule& schedule, std::uint64_t seed,

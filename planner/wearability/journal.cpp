@@ -60,9 +60,9 @@ std::string journal_line(std::uint64_t key, const TestResult& result) {
   out << std::setprecision(17);
   for (const TrialOutcome& t : result.trials) {
     out << ' ' << hex(t.seed) << ' ' << (t.success ? 1 : 0) << ' ' << t.steps << ' '
-        << (t.stalled ? 1 : 0) << ' ' << t.min_distance << ' ' << t.caught << ' '
-        << t.caught_at.x() << ' ' << t.caught_at.y() << ' ' << t.caught_at.z() << ' '
-        << t.caught_radius << ' ' << t.cloth_vertices;
+        << (t.stalled ? 1 : 0) << ' ' << t.min_distance << ' ' << t.caught << ' ' << t.caught_at.x()
+        << ' ' << t.caught_at.y() << ' ' << t.caught_at.z() << ' ' << t.caught_radius << ' '
+        << t.cloth_vertices;
   }
   const std::string body = out.str();
   return body + ' ' + hex(fingerprint(body));

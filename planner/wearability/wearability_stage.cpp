@@ -226,10 +226,9 @@ std::string not_wearable_message(const Wearability& result) {
          << " cloth vertices are still on the wearer: the open garment does not move off it "
             "at all (it encloses the wearer, or the trials are too short: --max-steps)";
   } else if (best != nullptr) {
-    text << std::fixed << std::setprecision(1) << ". It stays caught within "
-         << best->caught_radius << " mm of (" << best->caught_at.x() << ", "
-         << best->caught_at.y() << ", " << best->caught_at.z() << ") mm (" << best->caught
-         << " of " << best->cloth_vertices
+    text << std::fixed << std::setprecision(1) << ". It stays caught within " << best->caught_radius
+         << " mm of (" << best->caught_at.x() << ", " << best->caught_at.y() << ", "
+         << best->caught_at.z() << ") mm (" << best->caught << " of " << best->cloth_vertices
          << " cloth vertices still on the wearer in the trial that got farthest): a shape that "
             "locks the garment there (§9) comes off only with more cuts across that region or "
             "a looser garment; a longer --max-steps may be enough where the trials end early";

@@ -229,8 +229,8 @@ TEST_F(PlanTest, TheWearabilityVerbReadsTheWearerAtTheCutsScale) {
       << unscaled.err;
   EXPECT_NE(unscaled.err.find("differ in size by a factor of 2."), std::string::npos)
       << unscaled.err;
-  const auto bad = run_wearknit("wearability " + cut.string() + " --wearer " + wearer +
-                                " --wearer-units inch");
+  const auto bad =
+      run_wearknit("wearability " + cut.string() + " --wearer " + wearer + " --wearer-units inch");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(bad.err, "wearknit wearability: --wearer-units takes mm, cm or m, not 'inch'\n");
 }

@@ -179,15 +179,17 @@ TEST(MeshScanTest, NamesNonFiniteCoordinatesAndTheirLines) {
             "m.obj:4: error: [P003] vertex 4 has a coordinate that is not a finite number (`nan`)");
   EXPECT_EQ(result.messages[1],
             "m.obj:5: error: [P003] vertex 5 has a coordinate that is not a finite number (`inf`)");
-  EXPECT_EQ(result.messages[2], "m.obj:6: error: [P003] vertex 6 has a coordinate that is not a "
-                                "finite number (`1e999`)");
+  EXPECT_EQ(result.messages[2],
+            "m.obj:6: error: [P003] vertex 6 has a coordinate that is not a "
+            "finite number (`1e999`)");
 }
 
 TEST(MeshScanTest, NamesCornersThatNameNoVertex) {
   const auto obj = check_text(std::string(kGoodPair) + "f 1 2 99\nf 0 1 2\nf 1 2 -9\n", "obj");
   ASSERT_FALSE(obj.ok);
   ASSERT_EQ(obj.messages.size(), 3u);
-  EXPECT_EQ(obj.messages[0], "m.obj:7: error: [P005] face 3 refers to vertex 99; the file has 4 vertices");
+  EXPECT_EQ(obj.messages[0],
+            "m.obj:7: error: [P005] face 3 refers to vertex 99; the file has 4 vertices");
   EXPECT_EQ(obj.messages[1],
             "m.obj:8: error: [P005] face 4 has a corner 0; OBJ numbers vertices from 1");
   EXPECT_EQ(obj.messages[2],
@@ -198,8 +200,9 @@ TEST(MeshScanTest, NamesCornersThatNameNoVertex) {
   const auto off = check_text("OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 4\n", "off");
   ASSERT_FALSE(off.ok);
   ASSERT_EQ(off.messages.size(), 1u);
-  EXPECT_EQ(off.messages[0], "m.off:8: error: [P005] face 2 refers to vertex 4 (OFF numbers "
-                             "vertices from 0); the file has 4 vertices");
+  EXPECT_EQ(off.messages[0],
+            "m.off:8: error: [P005] face 2 refers to vertex 4 (OFF numbers "
+            "vertices from 0); the file has 4 vertices");
 }
 
 TEST(MeshScanTest, HeadersClaimingMoreThanTheFileHoldsAreRefusedBeforeReading) {
@@ -230,8 +233,9 @@ TEST(MeshScanTest, HeadersClaimingMoreThanTheFileHoldsAreRefusedBeforeReading) {
   stl.append(100, '\0');
   const auto binary = check_text(stl, "stl");
   ASSERT_FALSE(binary.ok);
-  EXPECT_EQ(binary.messages.at(0), "m.stl: error: [P006] the header claims 100000000 triangles "
-                                   "(5000000084 bytes) but the file has 184 bytes");
+  EXPECT_EQ(binary.messages.at(0),
+            "m.stl: error: [P006] the header claims 100000000 triangles "
+            "(5000000084 bytes) but the file has 184 bytes");
 }
 
 TEST(MeshScanTest, MalformedLinesAndShortFacesAreNamed) {
@@ -243,8 +247,7 @@ TEST(MeshScanTest, MalformedLinesAndShortFacesAreNamed) {
   EXPECT_EQ(result.messages[1], "m.obj:2: error: [P004] vertex 2: `zero` is not a number");
   EXPECT_EQ(result.messages[2],
             "m.obj:4: error: [P010] face 1 has 2 corners; a face needs at least 3");
-  EXPECT_EQ(result.messages[3],
-            "m.obj:5: error: [P004] face 2: corner `x` is not a vertex number");
+  EXPECT_EQ(result.messages[3], "m.obj:5: error: [P004] face 2: corner `x` is not a vertex number");
 }
 
 // OpenMesh's PLY reader loops for ever on a header line it does not know
@@ -266,9 +269,9 @@ TEST(MeshScanTest, PlyHeaderLinesOpenMeshCannotReadAreNamed) {
 
 // Every format's well-formed twin reads: the scan refuses nothing valid.
 TEST(MeshScanTest, WellFormedFilesOfEveryFormatRead) {
-  EXPECT_TRUE(check_text("# c\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3//1\n",
-                         "obj")
-                  .ok);
+  EXPECT_TRUE(
+      check_text("# c\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3//1\n", "obj")
+          .ok);
   EXPECT_TRUE(check_text("OFF 3 1 0\n# comment\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 0\n", "off").ok);
   EXPECT_TRUE(check_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty "
                          "float y\nproperty float z\nelement face 1\nproperty list uchar int "

@@ -1,5 +1,4 @@
 #include "planner/schedule/schedule.hpp"
-#include "planner/schedule/schedule_stage.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,6 +7,7 @@
 
 #include "knitout/parser.hpp"
 #include "planner/schedule/knitout_emit.hpp"
+#include "planner/schedule/schedule_stage.hpp"
 #include "planner/schedule/schoolbus.hpp"
 #include "tests/planner/bed_check.hpp"
 #include "tests/planner/schedule_fixtures.hpp"
@@ -105,12 +105,13 @@ TEST(ScheduleTest, CrossingBranchesNeedOneCutWhateverTheOrder) {
                           e.needle == why.needle);
   }
   EXPECT_TRUE(waiting) << "no loop of the parted rows waits on needle " << why.needle;
-  EXPECT_EQ(cut_cause_text(s, 0),
-            "cut 1: rows " + std::to_string(s.cut_rows[0].first) + " and " +
-                std::to_string(s.cut_rows[0].second) + " are parted because row " +
-                std::to_string(why.covering) + " is knit before row " +
-                std::to_string(s.cut_rows[0].second) + " over the needle where the loops from row " +
-                std::to_string(s.cut_rows[0].first) + " wait for it");
+  EXPECT_EQ(cut_cause_text(s, 0), "cut 1: rows " + std::to_string(s.cut_rows[0].first) + " and " +
+                                      std::to_string(s.cut_rows[0].second) +
+                                      " are parted because row " + std::to_string(why.covering) +
+                                      " is knit before row " +
+                                      std::to_string(s.cut_rows[0].second) +
+                                      " over the needle where the loops from row " +
+                                      std::to_string(s.cut_rows[0].first) + " wait for it");
 }
 
 TEST(ScheduleTest, BranchesCrossingBeyondTheShiftReachHaveTheHeldLoopsSetAside) {

@@ -207,12 +207,14 @@ TEST(WearabilityVerbTest, NoWearableCutWithinTheLimitIsW020NamingEveryAttempt) {
                            " --trials 1 --max-steps 10 --seed 3 --resolution 24 --cloth-vertices 0";
   auto result = run_wearknit(base + " --recut-limit 0");
   EXPECT_EQ(result.exit_code, 1);
-  EXPECT_EQ(result.err, (cut / "wearability.json").string() +
-                            ": error: [W020] the garment with every cut open did not come off the "
-                            "wearer in 1 trials of 10 steps, with the cut of seed 1 (the folder's) "
-                            "(--recut-limit 0); every arc is labelled lace" ". In the trial that got farthest, 128 of the 128 cloth vertices are still "
-                            "on the wearer: the open garment does not move off it at all (it "
-                            "encloses the wearer, or the trials are too short: --max-steps)\n");
+  EXPECT_EQ(result.err,
+            (cut / "wearability.json").string() +
+                ": error: [W020] the garment with every cut open did not come off the "
+                "wearer in 1 trials of 10 steps, with the cut of seed 1 (the folder's) "
+                "(--recut-limit 0); every arc is labelled lace"
+                ". In the trial that got farthest, 128 of the 128 cloth vertices are still "
+                "on the wearer: the open garment does not move off it at all (it "
+                "encloses the wearer, or the trials are too short: --max-steps)\n");
   auto report = nlohmann::json::parse(read_file(cut / "report.json"));
   EXPECT_EQ(report["params"]["seed"], 1) << "not cut again";
   EXPECT_EQ(report["wearability"]["cut_attempts"].size(), 1u);
@@ -220,14 +222,16 @@ TEST(WearabilityVerbTest, NoWearableCutWithinTheLimitIsW020NamingEveryAttempt) {
   result = run_wearknit(base + " --recut-limit 2");
   EXPECT_EQ(result.exit_code, 1);
   const std::uint64_t first = planner::recut_seed(3, 1), second = planner::recut_seed(3, 2);
-  EXPECT_EQ(result.err, (cut / "wearability.json").string() +
-                            ": error: [W020] the garment with every cut open did not come off the "
-                            "wearer in 1 trials of 10 steps, with each of the cuts of seed 1 (the "
-                            "folder's), seed " +
-                            std::to_string(first) + " (re-cut 1), seed " + std::to_string(second) +
-                            " (re-cut 2); every arc is labelled lace" ". In the trial that got farthest, 128 of the 128 cloth vertices are still "
-                            "on the wearer: the open garment does not move off it at all (it "
-                            "encloses the wearer, or the trials are too short: --max-steps)\n");
+  EXPECT_EQ(result.err,
+            (cut / "wearability.json").string() +
+                ": error: [W020] the garment with every cut open did not come off the "
+                "wearer in 1 trials of 10 steps, with each of the cuts of seed 1 (the "
+                "folder's), seed " +
+                std::to_string(first) + " (re-cut 1), seed " + std::to_string(second) +
+                " (re-cut 2); every arc is labelled lace"
+                ". In the trial that got farthest, 128 of the 128 cloth vertices are still "
+                "on the wearer: the open garment does not move off it at all (it "
+                "encloses the wearer, or the trials are too short: --max-steps)\n");
   EXPECT_NE(first, second);
   report = nlohmann::json::parse(read_file(cut / "report.json"));
   EXPECT_EQ(report["params"]["seed"], second) << "the folder holds the last cut tried";
