@@ -1,6 +1,9 @@
 #include "apps/wearknit/stage_options.hpp"
 
 #include <cmath>
+#include <optional>
+
+#include "planner/mesh/mesh_io.hpp"
 
 namespace wearknit::cli {
 
@@ -125,6 +128,34 @@ void add_wearability_options(po::options_description& options, WearabilityOption
       "one-at-a-time",
       "wearability: test each arc on its own, as §5 does, instead of closing runs of arcs "
       "together while the garment keeps coming off");
+}
+
+void add_wearer_unit_options(po::options_description& options, WearerUnitOptions& wearer) {
+  options.add_options()("wearer-units", po::value<std::string>(&wearer.units),
+                        "units of the wearer's file: mm, cm or m (default: the garment's, as "
+                        "the cut folder records them)")(
+      "wearer-scale", po::value<double>(&wearer.scale),
+      "factor on the wearer's coordinates (default: the garment's --scale, as the cut folder "
+      "records it)");
+}
+
+double wearer_mm_per_unit(const po::variables_map& values, const WearerUnitOptions& wearer,
+                          const std::string& dir, std::string& problem) {
+  // As the garment: its units and scale are the cut folder's unless given
+  // (`plan` reads both the same way).
+  planner::CutUnits units = planner::read_cut_units(dir);
+  if (values.count("wearer-units")) units.units = wearer.units;
+  if (values.count("wearer-scale")) units.scale = wearer.scale;
+  const std::optional<double> mm = planner::mm_per_unit(units.units);
+  if (!mm) {
+    problem = "--wearer-units takes mm, cm or m, not '" + units.units + "'";
+    return 0;
+  }
+  if (!(units.scale > 0) || !std::isfinite(units.scale)) {
+    problem = "--wearer-scale must be a positive number";
+    return 0;
+  }
+  return *mm * units.scale;
 }
 
 std::string check_wearability_options(const po::variables_map& values, WearabilityOptions& wear) {

@@ -37,6 +37,22 @@ struct WearabilityOptions {
   planner::WearabilityStageParams params;
 };
 // `trials_name`: "trials" for the verb, "wear-trials" for the plan.
+// --wearer-units and --wearer-scale (wearability, assembly): the wearer's
+// file read like the garment of the cut folder unless they are given.
+struct WearerUnitOptions {
+  std::string units;
+  double scale = 0;
+};
+void add_wearer_unit_options(boost::program_options::options_description& options,
+                             WearerUnitOptions& wearer);
+// Millimetres per unit of the wearer's file: the options given, else the
+// units and scale the cut folder `dir` recorded. Sets `problem` (and
+// returns 0) for units other than mm, cm or m or a scale that is not a
+// positive number.
+double wearer_mm_per_unit(const boost::program_options::variables_map& values,
+                          const WearerUnitOptions& wearer, const std::string& dir,
+                          std::string& problem);
+
 void add_wearability_options(boost::program_options::options_description& options,
                              WearabilityOptions& wear, const char* trials_name);
 std::string check_wearability_options(const boost::program_options::variables_map& values,

@@ -1,11 +1,10 @@
 // wearknit assembly: (re)writes the assembly guide of a finished plan folder
 // (planner/assembly/assembly.hpp): assembly.svg, assembly.pdf and assembly-3d.png.
-#include <cmath>
 #include <filesystem>
 #include <ostream>
 
 #include "apps/wearknit/cli.hpp"
-#include "planner/mesh/mesh_io.hpp"
+#include "apps/wearknit/stage_options.hpp"
 #include "planner/pipeline.hpp"
 
 namespace wearknit::cli {
@@ -16,21 +15,16 @@ int run_assembly(const std::vector<std::string>& args, Context& context) {
   std::string dir;
   std::string wearer;
   std::string page_png;
-  std::string wearer_units;
-  double wearer_scale = 0;
+  WearerUnitOptions wearer_units;
   po::options_description options("options");
   options.add_options()("dir", po::value<std::string>(&dir)->required(),
                         "plan folder after wearknit schedule (and wearability)")(
       "wearer", po::value<std::string>(&wearer),
       "the object the garment covers (OBJ, OFF, PLY or STL), drawn in assembly-3d.png")(
-      "wearer-units", po::value<std::string>(&wearer_units),
-      "units of the wearer's file: mm, cm or m (default: the garment's, as the folder's cut "
-      "records them)")("wearer-scale", po::value<double>(&wearer_scale),
-                       "factor on the wearer's coordinates (default: the garment's --scale, "
-                       "as the folder's cut records it)")(
       "page-png", po::value<std::string>(&page_png),
       "N:OUT.png: also draw page N of the guide as a PNG picture (a preview)")(
       "quiet,q", "print nothing on success");
+  add_wearer_unit_options(options, wearer_units);
   po::positional_options_description positional;
   positional.add("dir", 1);
   po::variables_map values;
@@ -42,20 +36,14 @@ int run_assembly(const std::vector<std::string>& args, Context& context) {
     context.err << dir << ": error: [A001] not a folder\n";
     return kExitUsage;
   }
-  planner::CutUnits units = planner::read_cut_units(dir);
-  if (values.count("wearer-units")) units.units = wearer_units;
-  if (values.count("wearer-scale")) units.scale = wearer_scale;
-  const std::optional<double> mm_per_unit = planner::mm_per_unit(units.units);
-  if (!mm_per_unit || !(units.scale > 0) || !std::isfinite(units.scale)) {
-    context.err << "wearknit assembly: "
-                << (mm_per_unit ? std::string("--wearer-scale must be a positive number")
-                                : "--wearer-units takes mm, cm or m, not '" + units.units + "'")
-                << '\n';
+  std::string problem;
+  const double wearer_factor = wearer_mm_per_unit(values, wearer_units, dir, problem);
+  if (!problem.empty()) {
+    context.err << "wearknit assembly: " << problem << '\n';
     return kExitUsage;
   }
   planner::AssemblySummary summary;
-  const std::string failure =
-      planner::write_assembly_guide(dir, wearer, &summary, *mm_per_unit * units.scale);
+  const std::string failure = planner::write_assembly_guide(dir, wearer, &summary, wearer_factor);
   if (!failure.empty()) {
     context.err << failure << '\n';
     // A missing file is a usage problem; content that does not hold together is invalid input.

@@ -2,7 +2,6 @@
 // laced (§5), by stripping the garment off the wearer in simulation; the
 // stage itself is planner::label_arcs (planner/pipeline.hpp).
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <ostream>
 
@@ -19,8 +18,8 @@ namespace po = boost::program_options;
 namespace fs = std::filesystem;
 
 int run_wearability(const std::vector<std::string>& args, Context& context) {
-  std::string dir, wearer_path, frames_dir, journal_path, wearer_units;
-  double wearer_scale = 0;
+  std::string dir, wearer_path, frames_dir, journal_path;
+  WearerUnitOptions wearer_units;
   WearabilityOptions wear;
   int frame_every = 10;
   po::options_description options("options");
@@ -28,12 +27,8 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
                         "cut folder (as `wearknit cut` writes it, or cut-mesh.obj and cut.json "
                         "made by hand)")("wearer", po::value<std::string>(&wearer_path)->required(),
                                          "the rigid object (OBJ, OFF, PLY or STL)")(
-      "wearer-units", po::value<std::string>(&wearer_units),
-      "units of the wearer's file: mm, cm or m (default: the garment's, as the cut folder "
-      "records them)")("wearer-scale", po::value<double>(&wearer_scale),
-                       "factor on the wearer's coordinates (default: the garment's --scale, "
-                       "as the cut folder records it)")(
       "seed", po::value<std::uint64_t>(&wear.params.test.seed)->default_value(1), "random seed");
+  add_wearer_unit_options(options, wearer_units);
   add_wearability_options(options, wear, "trials");
   add_threads_option(options, wear.params.test.threads);
   options.add_options()("frames", po::value<std::string>(&frames_dir),
@@ -54,16 +49,7 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   }
   std::string problem = check_wearability_options(values, wear);
   if (frame_every < 1) problem = "--frame-every must be positive";
-  // The wearer in millimetres, as the garment: its units and scale are the
-  // cut folder's unless given (`plan` reads both the same way).
-  planner::CutUnits units = planner::read_cut_units(dir);
-  if (values.count("wearer-units")) units.units = wearer_units;
-  if (values.count("wearer-scale")) units.scale = wearer_scale;
-  const std::optional<double> mm_per_unit = planner::mm_per_unit(units.units);
-  if (!mm_per_unit) problem = "--wearer-units takes mm, cm or m, not '" + units.units + "'";
-  if (!(units.scale > 0) || !std::isfinite(units.scale)) {
-    problem = "--wearer-scale must be a positive number";
-  }
+  const double wearer_factor = wearer_mm_per_unit(values, wearer_units, dir, problem);
   if (!problem.empty()) {
     context.err << "wearknit wearability: " << problem << '\n';
     return kExitUsage;
@@ -81,7 +67,7 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
   }
   auto wearer = planner::read_stage_mesh(wearer_path, sink);
   if (wearer) {
-    for (planner::Vec3& p : wearer->positions) p *= *mm_per_unit * units.scale;
+    for (planner::Vec3& p : wearer->positions) p *= wearer_factor;
     const planner::PolygonMesh* worn = cut       ? &cut->mesh.proxy.polygons()
                                        : garment ? &*garment
                                                  : nullptr;
