@@ -26,7 +26,8 @@ const std::vector<Verb>& verbs() {
       {"demo", "demo [-o DIR]", "run the built-in example end to end and say what to open",
        run_demo},
       {"wearability",
-       "wearability DIR --wearer WEARER.obj [--trials K] [--runs R] [--seed N] [--threads T] "
+       "wearability DIR --wearer WEARER.obj [--wearer-units U] [--wearer-scale S] [--trials K] "
+       "[--runs R] [--seed N] [--threads T] "
        "[--recut-limit N] [--frames OUT/]",
        "label each cut-arc sew or lace by stripping the garment off the wearer; re-cut an "
        "unwearable cut (§5)",
@@ -54,7 +55,9 @@ const std::vector<Verb>& verbs() {
        "[--wear-trials K] [--send URI]",
        "the whole pipeline: cut, wearability beside stitch mesh and schedule, assembly guide",
        run_plan},
-      {"assembly", "assembly DIR [--wearer WEARER.obj] [--page-png N:OUT.png]",
+      {"assembly",
+       "assembly DIR [--wearer WEARER.obj [--wearer-units U] [--wearer-scale S]] [--page-png "
+       "N:OUT.png]",
        "the assembly guide of a plan folder: pieces laid flat, seams numbered, sew and lace",
        run_assembly},
   };
