@@ -14,8 +14,6 @@
 #include "planner/assembly/assembly_page_layout.hpp"
 #include "planner/assembly/assembly_pages.hpp"
 #include "planner/assembly/assembly_picture.hpp"
-#include "planner/mesh/mesh_io.hpp"
-#include "planner/pipeline.hpp"
 #include "planner/render/png.hpp"
 #include "planner/wearability/wearability_io.hpp"
 
@@ -47,11 +45,8 @@ void prepare(Guide& g, const fs::path& plan_dir, const std::string& wearer_path,
     if (!g.wearer)
       assembly::fail(wearer_path, "A005",
                      "the wearer cannot be read: " + assembly::first_error(sink));
-    if (!wearer_mm_per_unit) {
-      const CutUnits units = read_cut_units(plan_dir.string());
-      wearer_mm_per_unit = mm_per_unit(units.units).value_or(1.0) * units.scale;
-    }
-    for (Vec3& p : g.wearer->positions) p *= *wearer_mm_per_unit;
+    const double factor = wearer_mm_per_unit.value_or(g.model.garment_mm_per_unit);
+    for (Vec3& p : g.wearer->positions) p *= factor;
   }
   g.pages = assembly::lay_out_pages(
       g.model, "Assembly guide: " + fs::absolute(plan_dir).lexically_normal().filename().string());

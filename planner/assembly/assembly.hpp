@@ -45,7 +45,7 @@ struct AssemblySummary {
 // message` (codes in docs/diagnostics.md). Nothing is written when the
 // folder cannot be read; every file is written atomically. The wearer's
 // coordinates are multiplied by `wearer_mm_per_unit`, by default the units
-// and scale the folder's cut recorded for the garment (read_cut_units).
+// and scale the folder's cut recorded for the garment.
 std::string write_assembly_guide(const std::filesystem::path& plan_dir,
                                  const std::string& wearer_path, AssemblySummary* summary = nullptr,
                                  std::optional<double> wearer_mm_per_unit = std::nullopt);

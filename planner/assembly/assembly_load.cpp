@@ -15,6 +15,7 @@
 #include "planner/assembly/assembly_model.hpp"
 #include "planner/assembly/assembly_seams.hpp"
 #include "planner/common/index.hpp"
+#include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
 
 namespace planner::assembly {
@@ -133,6 +134,7 @@ void load(Model& m, const fs::path& dir) {
   knitout::DiagnosticSink sink;
   const Cut cut = need(read_cut(folder, sink), sink, dir,
                        {"cut.json", "labels.json", "proxy.obj", "cut-mesh.obj"}, "cut");
+  m.garment_mm_per_unit = mm_per_unit(cut.report.units).value_or(1.0) * cut.report.scale;
   std::optional<WearabilityRecord> labels;
   if (fs::exists(dir / "wearability.json")) {
     labels = need(read_wearability(folder, sink), sink, dir, {"wearability.json"}, "wearability");

@@ -69,6 +69,7 @@ struct ArcInfo {
 
 struct Model {
   std::filesystem::path dir;
+  double garment_mm_per_unit = 1;  // the cut's recorded units times its scale
   StitchMesh mesh;
   std::vector<std::pair<int, int>> wale_seams;  // faces joined across a wale seam (§7.1)
   std::vector<PieceLayout> layouts;

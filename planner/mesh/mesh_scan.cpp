@@ -107,11 +107,33 @@ struct Faults {
   KindReporter corner;
   KindReporter size;
   KindReporter short_face;
-  int total() const {
-    return coordinate.count() + malformed.count() + corner.count() + size.count() +
-           short_face.count();
-  }
 };
+
+// P006: a header whose counts (`claim`, e.g. "5 vertices and 2 faces")
+// need more than the `left` bytes after it.
+void claims_too_much(Faults& faults, const std::string& claim, std::uint64_t left,
+                     std::uint32_t line) {
+  faults.size.report("the header claims " + claim + ", more than the " + std::to_string(left) +
+                         " bytes after it can hold; the header is wrong or the file is cut short",
+                     line);
+}
+
+// P006: the file ends after `read` of the elements its header claims.
+void ends_early(Faults& faults, std::int64_t read, const std::string& claimed,
+                std::uint32_t line = 0) {
+  faults.size.report(
+      "the file ends after " + std::to_string(read) + " of the " + claimed + " its header claims",
+      line);
+}
+
+// P005: OFF face `name`'s corner `v` is not one of its `nv` vertices.
+void off_corner_missing(Faults& faults, const std::string& name, std::int64_t v, std::int64_t nv,
+                        std::uint32_t line = 0) {
+  faults.corner.report(name + " refers to vertex " + std::to_string(v) +
+                           " (OFF numbers vertices from 0); the file has " +
+                           plural(nv, "vertex", "vertices"),
+                       line);
+}
 
 // Three coordinates from words[first ..]: P004 when there are not three
 // numbers, P003 when one is not finite. `what` names the vertex.
@@ -147,9 +169,8 @@ void scan_obj(std::string_view bytes, Faults& faults) {
   {
     Lines lines(bytes);
     while (auto line = lines.next()) {
-      std::size_t i = 0;
-      while (i < line->size() && is_space((*line)[i])) ++i;
-      if (line->size() >= i + 2 && (*line)[i] == 'v' && is_space((*line)[i + 1])) ++total;
+      const std::vector<std::string_view> w = words(*line);
+      if (!w.empty() && w[0] == "v") ++total;
     }
   }
   Lines lines(bytes);
@@ -214,10 +235,9 @@ void read_binary_off(std::string_view bytes, std::size_t at, std::uint32_t line,
   at += 12;
   const std::uint64_t left = bytes.size() - at;
   if (std::uint64_t{nv} * 12 + std::uint64_t{nf} * 20 > left) {
-    faults.size.report("the header claims " + plural(nv, "vertex", "vertices") + " and " +
-                           plural(nf, "face", "faces") + ", more than the " + std::to_string(left) +
-                           " bytes after it can hold; the header is wrong or the file is cut short",
-                       line);
+    claims_too_much(faults,
+                    plural(nv, "vertex", "vertices") + " and " + plural(nf, "face", "faces"), left,
+                    line);
     return;
   }
   soup.positions.reserve(nv);
@@ -239,8 +259,7 @@ void read_binary_off(std::string_view bytes, std::size_t at, std::uint32_t line,
   for (std::uint32_t f = 0; f < nf; ++f) {
     const std::string name = "face " + std::to_string(f + 1);
     if (bytes.size() < at + 4) {
-      faults.size.report("the file ends after " + std::to_string(f) + " of the " +
-                         plural(nf, "face", "faces") + " its header claims");
+      ends_early(faults, f, plural(nf, "face", "faces"));
       return;
     }
     const std::uint32_t k = word(at);
@@ -260,9 +279,7 @@ void read_binary_off(std::string_view bytes, std::size_t at, std::uint32_t line,
     for (std::uint32_t i = 0; i < k; ++i) {
       const auto v = static_cast<std::int32_t>(word(corners + 4 * std::size_t{i}));
       if (v < 0 || static_cast<std::uint32_t>(v) >= nv) {
-        faults.corner.report(name + " refers to vertex " + std::to_string(v) +
-                             " (OFF numbers vertices from 0); the file has " +
-                             plural(nv, "vertex", "vertices"));
+        off_corner_missing(faults, name, v, nv);
         break;
       }
       face.push_back(v);
@@ -342,10 +359,9 @@ bool scan_off(std::string_view bytes, Faults& faults, PolygonMesh& soup) {
   constexpr std::int64_t kMost = std::numeric_limits<std::int64_t>::max() / 16;
   if (nv > kMost || nf > kMost ||
       static_cast<std::uint64_t>(nv * 6 + nf * 8) > static_cast<std::uint64_t>(left)) {
-    faults.size.report("the header claims " + plural(nv, "vertex", "vertices") + " and " +
-                           plural(nf, "face", "faces") + ", more than the " + std::to_string(left) +
-                           " bytes after it can hold; the header is wrong or the file is cut short",
-                       head_line);
+    claims_too_much(faults,
+                    plural(nv, "vertex", "vertices") + " and " + plural(nf, "face", "faces"), left,
+                    head_line);
     return false;
   }
   soup.positions.reserve(static_cast<std::size_t>(nv));
@@ -360,9 +376,7 @@ bool scan_off(std::string_view bytes, Faults& faults, PolygonMesh& soup) {
             .value_or(Vec3::Zero()));
   }
   if (vertices < nv) {
-    faults.size.report("the file ends after " + std::to_string(vertices) + " of the " +
-                           plural(nv, "vertex", "vertices") + " its header claims",
-                       lines.number());
+    ends_early(faults, vertices, plural(nv, "vertex", "vertices"), lines.number());
     return false;
   }
   std::int64_t faces = 0;
@@ -393,20 +407,13 @@ bool scan_off(std::string_view bytes, Faults& faults, PolygonMesh& soup) {
         break;
       }
       if (*v < 0 || *v >= nv) {
-        faults.corner.report(name + " refers to vertex " + std::to_string(*v) +
-                                 " (OFF numbers vertices from 0); the file has " +
-                                 plural(nv, "vertex", "vertices"),
-                             n);
+        off_corner_missing(faults, name, *v, nv, n);
         break;
       }
       face.push_back(static_cast<int>(*v));
     }
   }
-  if (faces < nf) {
-    faults.size.report("the file ends after " + std::to_string(faces) + " of the " +
-                           plural(nf, "face", "faces") + " its header claims",
-                       lines.number());
-  }
+  if (faces < nf) ends_early(faults, faces, plural(nf, "face", "faces"), lines.number());
   return true;
 }
 
@@ -503,12 +510,8 @@ void scan_ply(std::string_view bytes, Faults& faults) {
   for (const Element& e : elements) {
     const std::uint64_t least = std::max<std::uint64_t>(1, e.least);
     if (static_cast<std::uint64_t>(e.count) > left / least || need + e.count * least > left) {
-      faults.size.report("the header claims " + std::to_string(e.count) + " " +
-                             std::string(e.name) + " elements, more than the " +
-                             std::to_string(left) +
-                             " bytes after it can hold; the header is wrong or the file is cut "
-                             "short",
-                         e.line);
+      claims_too_much(faults, std::to_string(e.count) + " " + std::string(e.name) + " elements",
+                      left, e.line);
       return;
     }
     need += e.count * least;

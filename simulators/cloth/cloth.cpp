@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "simulators/cloth/parallel.hpp"
 
@@ -362,17 +363,15 @@ StripResult ClothSimulation::run(
   result.min_distance = min_distance();
   result.projections = projections_;
   if (!result.success) {
+    std::vector<Vec3> caught;
     for (const Vec3& x : x_) {
-      if (wearer_.value(x) < goal) {
-        ++result.caught;
-        result.caught_at += x;
-      }
+      if (wearer_.value(x) < goal) caught.push_back(x);
     }
-    if (result.caught > 0) result.caught_at /= result.caught;
-    for (const Vec3& x : x_) {
-      if (wearer_.value(x) < goal) {
-        result.caught_radius = std::max(result.caught_radius, (x - result.caught_at).norm());
-      }
+    result.caught = static_cast<int>(caught.size());
+    for (const Vec3& x : caught) result.caught_at += x;
+    if (!caught.empty()) result.caught_at /= result.caught;
+    for (const Vec3& x : caught) {
+      result.caught_radius = std::max(result.caught_radius, (x - result.caught_at).norm());
     }
   }
   return result;
