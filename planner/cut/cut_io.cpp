@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "planner/common/index.hpp"
 #include "planner/common/json_file.hpp"
 #include "planner/cut/cut_pictures.hpp"
+#include "planner/mesh/girth.hpp"
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
 
@@ -152,8 +154,23 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
            {{"load", r.load_seconds},
             {"proxy", r.proxy_seconds},
             {"field", r.field_seconds},
+            {"girth", r.girth_seconds},
             {"cut", r.cut_seconds},
-            {"total", r.load_seconds + r.proxy_seconds + r.field_seconds + r.cut_seconds}}}};
+            {"total", r.load_seconds + r.proxy_seconds + r.field_seconds + r.girth_seconds +
+                          r.cut_seconds}}}};
+}
+
+// Per vertex of Q, mm to 0.01; null where no girth was measured.
+json girth_json(const std::vector<double>& girth) {
+  json out = json::array();
+  for (const double g : girth) {
+    if (std::isfinite(g)) {
+      out.push_back(std::round(g * 100.0) / 100.0);
+    } else {
+      out.push_back(nullptr);
+    }
+  }
+  return out;
 }
 
 std::string obj_text(const PolygonMesh& mesh, std::string_view header) {
@@ -220,6 +237,7 @@ CutReport report_from_json(const json& r) {
   report.load_seconds = time.value("load", 0.0);
   report.proxy_seconds = time.value("proxy", 0.0);
   report.field_seconds = time.value("field", 0.0);
+  report.girth_seconds = time.value("girth", 0.0);
   report.cut_seconds = time.value("cut", 0.0);
   return report;
 }
@@ -250,6 +268,7 @@ std::string write_cut(const std::string& dir, const Cut& cut, const CutPictures&
                    {"cut_edges", summary.cut_edges},
                    {"cut_length_mm", summary.cut_length_mm},
                    {"arcs", arcs},
+                   {"girth_mm", girth_json(cut.girth_mm)},
                    {"report", report_json(mesh, summary, cut.report)}};
   cut_file["report"]["picture_px"] = pictures.draw ? pictures.panel_px : 0;
   const std::pair<const char*, const std::string*> objs[] = {{"proxy.obj", &proxy},
@@ -380,6 +399,16 @@ std::optional<Cut> read_cut(const std::string& dir, knitout::DiagnosticSink& sin
     cut.disc = std::move(*disc);
     cut.disc_source = std::move(source);
     result.report = report_from_json(cuts->value("report", json::object()));
+    if (const auto g = cuts->find("girth_mm"); g != cuts->end()) {
+      if (!g->is_array() || g->size() != at(q.num_vertices())) {
+        sink.error(cuts_name, 0, 0, "P022",
+                   "\"girth_mm\" has " + std::to_string(g->is_array() ? g->size() : 0) +
+                       " values; proxy.obj has " + std::to_string(q.num_vertices()) + " vertices");
+        return std::nullopt;
+      }
+      for (const auto& value : *g)
+        result.girth_mm.push_back(value.is_null() ? kNoGirth : value.get<double>());
+    }
     if (!parse_hex64(cuts->value("cut_id", std::string()), result.id)) {
       sink.error(cuts_name, 0, 0, "P021", "no \"cut_id\" of 16 hex digits");
       return std::nullopt;

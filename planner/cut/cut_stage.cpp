@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "planner/common/index.hpp"
+#include "planner/mesh/girth.hpp"
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/mesh/surface_distance.hpp"
 #include "planner/pipeline.hpp"
@@ -133,6 +135,10 @@ Cut cut_garment(const PolygonMesh& garment, const CutStageParams& params) {
   take_proxy(proxy, report);
 
   start = std::chrono::steady_clock::now();
+  result.girth_mm = girth_at(garment, measure_girth(garment), q.polygons().positions);
+  report.girth_seconds = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
   result.mesh = checked_cut(std::move(q), params.cut, vanishing_corner);
   report.cut_seconds = seconds_since(start);
   return result;
@@ -142,6 +148,7 @@ Cut recut(const Cut& cut, std::uint64_t seed) {
   Cut result;
   result.report = cut.report;
   result.report.params.seed = seed;
+  result.girth_mm = cut.girth_mm;  // the same Q
   const auto start = std::chrono::steady_clock::now();
   // The field-guided proxy's corners come from its field, not from a rule.
   const std::vector<int> none;
@@ -205,7 +212,19 @@ std::string describe(const Cut& cut) {
        << "cut: " << s.irregular_vertices << " irregular vertices, " << s.cut_edges
        << " cut edges in " << s.arcs << " arcs, " << s.cut_length_mm << " mm, "
        << s.overlapping_faces << " overlapping faces, " << std::setprecision(3)
-       << r.proxy_seconds + r.field_seconds + r.cut_seconds << " s\n";
+       << r.proxy_seconds + r.field_seconds + r.girth_seconds + r.cut_seconds << " s\n";
+  // The narrowest part of the garment, for the fine features the
+  // stitch-mesh stage judges at its gauge (docs/stitch-mesh.md).
+  int narrowest = -1;
+  for (std::size_t v = 0; v < cut.girth_mm.size(); ++v) {
+    if (narrowest < 0 || cut.girth_mm[v] < cut.girth_mm[at(narrowest)])
+      narrowest = static_cast<int>(v);
+  }
+  if (narrowest >= 0 && std::isfinite(cut.girth_mm[at(narrowest)])) {
+    const Vec3& p = cut.mesh.proxy.position(narrowest);
+    text << std::setprecision(1) << "girth: narrowest " << cut.girth_mm[at(narrowest)]
+         << " mm round, at (" << p.x() << ", " << p.y() << ", " << p.z() << ") mm\n";
+  }
   return text.str();
 }
 

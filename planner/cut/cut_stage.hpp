@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "planner/cut/cut.hpp"
 #include "planner/mesh/mesh.hpp"
@@ -60,6 +61,7 @@ struct CutReport {
   double proxy_seconds = 0.0;
   double field_seconds = 0.0;
   double cut_seconds = 0.0;
+  double girth_seconds = 0.0;
 };
 
 // A cut and its report: the stage's output, and what later stages read.
@@ -70,6 +72,11 @@ struct Cut {
   // a cut not read from a folder). Later stages record the id of the cut
   // they used, so a folder tells when their files belong to another cut.
   std::uint64_t id = 0;
+  // The garment's girth (mesh/girth.hpp) at each vertex of Q, mm, measured
+  // on the garment itself (kNoGirth where no ray could measure it): the
+  // stitch-mesh stage finds the fine features in it. Empty for a cut
+  // folder that does not record it.
+  std::vector<double> girth_mm;
 };
 
 struct CutStageParams {

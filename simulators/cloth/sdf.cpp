@@ -179,6 +179,77 @@ Vec3 TriangleMeshQuery::closest_point(const Vec3& p) const {
   return nearest;
 }
 
+namespace {
+
+// Where the ray origin + t * direction enters the box: t of entry, or
+// infinity when it misses it (slab test; zero components give +-inf).
+double ray_box_entry(const Eigen::AlignedBox3d& box, const Vec3& origin, const Vec3& inverse) {
+  double near = -std::numeric_limits<double>::infinity();
+  double far = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    double t0 = (box.min()[k] - origin[k]) * inverse[k];
+    double t1 = (box.max()[k] - origin[k]) * inverse[k];
+    if (std::isnan(t0) || std::isnan(t1)) {  // parallel to the slab and on its plane
+      if (origin[k] < box.min()[k] || origin[k] > box.max()[k])
+        return std::numeric_limits<double>::infinity();
+      continue;
+    }
+    if (t0 > t1) std::swap(t0, t1);
+    near = std::max(near, t0);
+    far = std::min(far, t1);
+  }
+  if (near > far || far < 0) return std::numeric_limits<double>::infinity();
+  return std::max(near, 0.0);
+}
+
+// Möller–Trumbore: t along the ray where it crosses triangle abc, or
+// infinity. The barycentric bounds have a little slack, so a ray through
+// an edge or a vertex shared by several triangles hits at least one.
+double ray_triangle(const Vec3& origin, const Vec3& direction, const Vec3& a, const Vec3& b,
+                    const Vec3& c) {
+  const Vec3 e1 = b - a, e2 = c - a;
+  const Vec3 p = direction.cross(e2);
+  const double det = e1.dot(p);
+  const double scale = e1.norm() * e2.norm();
+  if (std::abs(det) <= 1e-14 * scale) return std::numeric_limits<double>::infinity();
+  const Vec3 s = origin - a;
+  const double u = s.dot(p) / det;
+  constexpr double slack = 1e-9;
+  if (u < -slack || u > 1 + slack) return std::numeric_limits<double>::infinity();
+  const Vec3 q = s.cross(e1);
+  const double v = direction.dot(q) / det;
+  if (v < -slack || u + v > 1 + slack) return std::numeric_limits<double>::infinity();
+  return e2.dot(q) / det;
+}
+
+}  // namespace
+
+double TriangleMeshQuery::ray_hit(const Vec3& origin, const Vec3& direction, double min_t,
+                                  int facing) const {
+  const Vec3 inverse = direction.cwiseInverse();
+  double best = std::numeric_limits<double>::infinity();
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[stack[--top]];
+    if (ray_box_entry(node.box, origin, inverse) >= best) continue;
+    if (node.left < 0) {
+      for (int i = node.begin; i < node.end; ++i) {
+        const auto& t = triangles_[order_[i]];
+        const Vec3 &a = vertices_[t[0]], &b = vertices_[t[1]], &c = vertices_[t[2]];
+        if (facing != 0 && facing * direction.dot((b - a).cross(c - a)) <= 0) continue;
+        const double hit = ray_triangle(origin, direction, a, b, c);
+        if (hit > min_t && hit < best) best = hit;
+      }
+      continue;
+    }
+    stack[top++] = node.left;
+    stack[top++] = node.right;
+  }
+  return best;
+}
+
 double TriangleMeshQuery::winding_number(const Vec3& p) const {
   double total = 0;
   int stack[128];

@@ -50,6 +50,13 @@ class TriangleMeshQuery {
   double distance(const Vec3& p) const;
   // The point of the surface nearest to `p`.
   Vec3 closest_point(const Vec3& p) const;
+  // How far along the unit `direction` from `origin` the ray first crosses a
+  // triangle, counting crossings beyond `min_t` only (to step off the
+  // surface the ray starts on); infinity when it crosses none. With
+  // `facing` +1 only triangles whose (a, b, c) normal points along the ray
+  // count, with -1 only those facing against it, with 0 all.
+  double ray_hit(const Vec3& origin, const Vec3& direction, double min_t = 0.0,
+                 int facing = 0) const;
   // Generalised winding number of the surface around `p` (1 inside a closed,
   // outward-oriented surface, 0 outside).
   double winding_number(const Vec3& p) const;

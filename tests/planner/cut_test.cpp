@@ -7,6 +7,7 @@
 #include <set>
 
 #include "planner/cut/vanishing.hpp"
+#include "planner/mesh/girth.hpp"
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
 #include "planner/proxy/proxy.hpp"
@@ -228,8 +229,11 @@ TEST(CutTest, VerifyCatchesABrokenCut) {
 TEST(CutIoTest, FolderRoundTrips) {
   const CutMesh cut = cut_of(test_meshes::cube(4), 2);
   const auto dir = wearknit::test::make_temp_dir("cut_io");
-  Cut written{cut, {}, 0};
+  Cut written{cut, {}, 0, {}};
   written.report.input = "cube";
+  // The girth per vertex of Q, with one no ray could measure.
+  for (int v = 0; v < cut.proxy.num_vertices(); ++v) written.girth_mm.push_back(1.0 + 0.25 * v);
+  written.girth_mm[1] = kNoGirth;
   std::uint64_t id = 0;
   ASSERT_EQ(write_cut(dir.string(), written, {false, 600}, &id), "");
   knitout::DiagnosticSink sink;
@@ -249,6 +253,7 @@ TEST(CutIoTest, FolderRoundTrips) {
   EXPECT_EQ(back->arcs.size(), cut.arcs.size());
   EXPECT_EQ(back->labels.irregular_vertices, cut.labels.irregular_vertices);
   EXPECT_TRUE(verify_cut(*back).empty());
+  EXPECT_EQ(read->girth_mm, written.girth_mm);
   // cut-mesh.obj starts with proxy.obj's vertices in order, the cut copies follow.
   ASSERT_GT(cut.disc_source.size(), static_cast<std::size_t>(cut.proxy.num_vertices()));
   for (int v = 0; v < cut.proxy.num_vertices(); ++v) {
@@ -269,7 +274,7 @@ TEST(CutIoTest, MissingFolderIsADiagnostic) {
 TEST(CutIoTest, ArcOverANonEdgeIsADiagnostic) {
   const CutMesh cut = cut_of(test_meshes::torus(6, 4));
   const auto dir = wearknit::test::make_temp_dir("cut_io_bad");
-  ASSERT_EQ(write_cut(dir.string(), Cut{cut, {}, 0}, {false, 600}), "");
+  ASSERT_EQ(write_cut(dir.string(), Cut{cut, {}, 0, {}}, {false, 600}), "");
   std::string cuts = wearknit::test::read_file(dir / "cut.json");
   const auto pos = cuts.find("\"edges\": [");
   ASSERT_NE(pos, std::string::npos);

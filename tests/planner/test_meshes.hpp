@@ -41,6 +41,35 @@ inline PolygonMesh torus(int n, int m, double big = 3.0, double small = 1.0) {
   return mesh;
 }
 
+// A closed surface of revolution about the z axis: `rings` circles of `n`
+// vertices at z = length * (i + 1) / (rings + 1) with radius radius(z),
+// closed by a pole vertex at each end; quads, and triangles at the poles,
+// facing outwards.
+template <class Radius>
+PolygonMesh revolution(double length, int rings, int n, Radius radius) {
+  PolygonMesh mesh;
+  const double pi = std::acos(-1.0);
+  mesh.positions.emplace_back(0, 0, 0);
+  for (int j = 0; j < rings; ++j) {
+    const double z = length * (j + 1) / (rings + 1);
+    const double r = radius(z);
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * pi * i / n;
+      mesh.positions.emplace_back(r * std::cos(a), r * std::sin(a), z);
+    }
+  }
+  mesh.positions.emplace_back(0, 0, length);
+  const int top = static_cast<int>(mesh.positions.size()) - 1;
+  auto id = [&](int i, int j) { return 1 + j * n + (i + n) % n; };
+  for (int i = 0; i < n; ++i) mesh.faces.push_back({0, id(i + 1, 0), id(i, 0)});
+  for (int j = 0; j + 1 < rings; ++j) {
+    for (int i = 0; i < n; ++i)
+      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  }
+  for (int i = 0; i < n; ++i) mesh.faces.push_back({id(i, rings - 1), id(i + 1, rings - 1), top});
+  return mesh;
+}
+
 // The surface of the cube [0,k]^3 split into k x k quads per side (genus 0;
 // its 8 corners have 3 quads each: irregular).
 inline PolygonMesh cube(int k) {

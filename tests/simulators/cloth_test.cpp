@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -48,6 +49,29 @@ TEST(SdfTest, ClosestPointLiesOnTheNearestTriangle) {
   // The distance is the distance to that point.
   const Vec3 p(0.9, 0.8, 0.3);
   EXPECT_DOUBLE_EQ(query.distance(p), (query.closest_point(p) - p).norm());
+}
+
+TEST(SdfTest, RayHitFindsTheFirstCrossingItCounts) {
+  const CoverMesh ball = sphere_mesh(1.0, 48, 24);
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& f : ball.faces) {
+    for (std::size_t i = 1; i + 1 < f.size(); ++i) triangles.push_back({f[0], f[i], f[i + 1]});
+  }
+  const cloth::TriangleMeshQuery query(ball.positions, triangles);
+  const Vec3 x = Vec3::UnitX();
+  // From the centre: the sphere's radius, less the facets' sag.
+  EXPECT_NEAR(query.ray_hit(Vec3::Zero(), x), 1.0, 0.01);
+  EXPECT_NEAR(query.ray_hit(Vec3::Zero(), Vec3(1, 1, 1).normalized()), 1.0, 0.01);
+  // From outside: in at 1, out at 3; facing picks one of them.
+  const Vec3 outside(-2, 0.001, 0.002);
+  EXPECT_NEAR(query.ray_hit(outside, x), 1.0, 0.01);
+  EXPECT_NEAR(query.ray_hit(outside, x, 0.0, -1), 1.0, 0.01);
+  EXPECT_NEAR(query.ray_hit(outside, x, 0.0, +1), 3.0, 0.01);
+  // Crossings nearer than min_t are skipped.
+  EXPECT_NEAR(query.ray_hit(outside, x, 1.5), 3.0, 0.01);
+  // A ray that misses, and one pointing away.
+  EXPECT_EQ(query.ray_hit(Vec3(0, 5, 0), x), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(query.ray_hit(outside, -x), std::numeric_limits<double>::infinity());
 }
 
 TEST(SdfTest, WindingNumberSignSurvivesAHole) {
