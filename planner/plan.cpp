@@ -380,7 +380,19 @@ PlanResult run_plan(const PlanInputs& inputs, const PlanParams& params, const st
       run.err = dir + ": cannot create folder: " + (ec ? ec.message() : "not a folder") + '\n';
       return 2;
     }
-    return cut_stage(inputs, params, base, run, cut);
+    const int code = cut_stage(inputs, params, base, run, cut);
+    // Fine features refused stop the plan before the wearability stage
+    // spends its minutes (the stitch-mesh stage would refuse them too).
+    if (code == 0 && params.stitch_mesh.refuse_fine_features) {
+      const FineFeatures fine = fine_features(cut.cut, params.stitch_mesh);
+      if (!fine.parts.empty()) {
+        knitout::DiagnosticSink sink;
+        report_fine_features(fine, true, (base / "cut.json").string(), sink);
+        run.err += diagnostics_text(sink);
+        return 1;
+      }
+    }
+    return code;
   });
   if (cut_code == 0) {
     // Fig. 2: the wearability test runs beside stitch meshing and scheduling.

@@ -47,7 +47,8 @@ const std::vector<Verb>& verbs() {
        "cut a garment surface into one disc with consistent course/wale labels (paper §4)",
        run_cut},
       {"stitch-mesh",
-       "stitch-mesh DIR [--gauge N] [--swatch SxR:WxH_MM | --stitch-mm CxW] [--no-picture]",
+       "stitch-mesh DIR [--gauge N] [--swatch SxR:WxH_MM | --stitch-mm CxW] "
+       "[--fine-features knit|refuse] [--no-picture]",
        "remesh a cut folder into a stitch mesh of course x wale faces (paper §6)", run_stitch_mesh},
       {"plan",
        "plan GARMENT --wearer WEARER -o DIR [--seed N] [--pattern plain|seed] [--units U] "

@@ -63,6 +63,12 @@ void add_stitch_mesh_options(po::options_description& options, StitchMeshOptions
       "measured swatch STITCHESxROWS:WIDTHxHEIGHT_MM (the paper's seed swatch, §8.1)")(
       "stitch-mm", po::value<std::string>(&stitch.stitch_mm),
       "stitch size COURSExWALE in mm, instead of --swatch")(
+      "min-girth", po::value<double>(&stitch.params.min_girth_stitches)->default_value(3.0),
+      "fine features are parts of the garment less than this many stitches (of the larger "
+      "stitch side) round")(
+      "fine-features", po::value<std::string>(&stitch.fine_features)->default_value("knit"),
+      "knit: knit fine features at the gauge's resolution, with a warning (P088); refuse: stop "
+      "with their list and a size or stitch that would knit them (P089)")(
       "straighten", po::value<int>(&p.straighten_iterations)->default_value(100),
       "at most this many fits of the row time towards unit row height after the fit to the "
       "labels; they stop once the row time moves less than 0.01 row")(
@@ -95,6 +101,11 @@ std::string check_stitch_mesh_options(const po::variables_map& values, StitchMes
     problem = planner::parse_swatch(stitch.swatch, gauge);
   }
   if (problem.empty()) problem = planner::check_gauge(gauge);
+  if (problem.empty() && stitch.fine_features != "knit" && stitch.fine_features != "refuse")
+    problem = "--fine-features takes knit or refuse, not '" + stitch.fine_features + "'";
+  if (problem.empty() && !(stitch.params.min_girth_stitches >= 0.0))
+    problem = "--min-girth must not be negative";
+  stitch.params.refuse_fine_features = stitch.fine_features == "refuse";
   const planner::StitchMeshParams& p = stitch.params.mesher;
   if (problem.empty() &&
       (p.straighten_iterations < 0 || !(p.label_weight >= 0) || !(p.pentagon_cost >= 0) ||

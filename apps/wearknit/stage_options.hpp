@@ -27,6 +27,7 @@ struct StitchMeshOptions {
   planner::StitchMeshStageParams params;
   std::string swatch = "40x40:42x115";
   std::string stitch_mm;
+  std::string fine_features = "knit";
 };
 void add_stitch_mesh_options(boost::program_options::options_description& options,
                              StitchMeshOptions& stitch);

@@ -89,6 +89,19 @@ nlohmann::json lengths_json(const EdgeLengthStats& s, double target) {
           {"min_mm", s.min_mm}, {"max_mm", s.max_mm},  {"within_15_percent", s.within_15_percent}};
 }
 
+nlohmann::json fine_features_json(const FineFeatures& fine) {
+  nlohmann::json parts = nlohmann::json::array();
+  for (const NarrowPart& part : fine.parts) {
+    parts.push_back(
+        {{"girth_mm", part.girth_mm},
+         {"at_mm", {part.narrowest_at.x(), part.narrowest_at.y(), part.narrowest_at.z()}},
+         {"proxy_vertex", part.narrowest_vertex},
+         {"vertices", part.vertices},
+         {"across_mm", 2 * part.extent_mm}});
+  }
+  return {{"bound_mm", fine.bound_mm}, {"stitch_mm", fine.stitch_mm}, {"parts", parts}};
+}
+
 nlohmann::json report_json(const StitchMeshReport& report) {
   const StitchMeshFigures& f = report.figures;
   const double stitch_area = report.gauge.course_mm * report.gauge.wale_mm;
@@ -130,6 +143,7 @@ nlohmann::json report_json(const StitchMeshReport& report) {
            {{"faces", report.off_surface.faces.size()},
             {"max_offset_mm", report.off_surface.max_offset_mm},
             {"tolerance_mm", report.off_surface.tolerance_mm}}},
+          {"fine_features", fine_features_json(report.fine)},
           {"boundary_loops", f.boundary_loops},
           {"euler_characteristic", f.euler_characteristic},
           {"remesh_seconds", report.stats.total_seconds},

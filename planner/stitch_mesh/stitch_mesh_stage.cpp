@@ -1,9 +1,11 @@
 #include "planner/stitch_mesh/stitch_mesh_stage.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <sstream>
 
+#include "planner/common/index.hpp"
 #include "planner/pipeline.hpp"
 
 namespace planner {
@@ -13,14 +15,93 @@ namespace {
 // Problems are many when a disc cannot be meshed; the first ones say why.
 constexpr std::size_t kProblemsShown = 20;
 
+// Fine features listed one by one; the rest are counted.
+constexpr std::size_t kFineFeaturesShown = 10;
+
+std::string point_text(const Vec3& p) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << "(" << p.x() << ", " << p.y() << ", " << p.z()
+       << ") mm";
+  return text.str();
+}
+
 }  // namespace
+
+FineFeatures fine_features(const Cut& cut, const StitchMeshStageParams& params) {
+  FineFeatures found;
+  found.stitch_mm = std::max(params.gauge.course_mm, params.gauge.wale_mm);
+  found.bound_mm = params.min_girth_stitches * found.stitch_mm;
+  found.size_mm = cut.report.input_size_mm.maxCoeff();
+  if (cut.girth_mm.size() == at(cut.mesh.proxy.num_vertices()))
+    found.parts = narrow_parts(cut.mesh.proxy.polygons(), cut.girth_mm, found.bound_mm);
+  return found;
+}
+
+void report_fine_features(const FineFeatures& found, bool refused, const std::string& source,
+                          knitout::DiagnosticSink& sink) {
+  if (found.parts.empty()) return;
+  const char* code = refused ? "P089" : "P088";
+  auto say = [&](const std::string& text) {
+    if (refused) {
+      sink.error(source, 0, 0, code, text);
+    } else {
+      sink.warning(source, 0, 0, code, text);
+    }
+  };
+  const std::size_t count = found.parts.size();
+  for (std::size_t i = 0; i < count && i < kFineFeaturesShown; ++i) {
+    const NarrowPart& part = found.parts[i];
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(1) << "fine feature " << i + 1 << " of " << count
+         << ": " << part.girth_mm << " mm round (" << part.girth_mm / found.stitch_mm
+         << " stitches of " << std::setprecision(2) << found.stitch_mm << " mm; at least "
+         << std::setprecision(1) << found.bound_mm << " mm are needed) at "
+         << point_text(part.narrowest_at) << " (vertex " << part.narrowest_vertex + 1
+         << " of proxy.obj)";
+    if (part.vertices > 1)
+      text << ", in a part of " << part.vertices << " vertices " << 2 * part.extent_mm
+           << " mm across";
+    say(text.str());
+  }
+  if (count > kFineFeaturesShown)
+    say("... and " + std::to_string(count - kFineFeaturesShown) + " more fine features");
+  // What knits the narrowest part at the bound: a larger garment or a
+  // smaller stitch, by the same factor.
+  const double girth = found.parts.front().girth_mm;
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1);
+  if (refused) {
+    text << "not knitted: ";
+  } else {
+    text << "knitted at the gauge's resolution: these parts come out blunter and thicker than "
+            "the garment; ";
+  }
+  if (girth > 0) {
+    const double factor = found.bound_mm / girth;
+    text << "to knit them as they are, make the garment " << std::setprecision(2) << factor
+         << " times larger";
+    if (found.size_mm > 0)
+      text << std::setprecision(0) << " (" << found.size_mm * factor
+           << " mm along its longest side: plan --size-mm, cut --scale)";
+    text << std::setprecision(2) << ", or use stitches at most " << found.stitch_mm / factor
+         << " mm on their larger side (--swatch, --stitch-mm: a finer gauge)";
+  } else {
+    text << "parts with no measurable girth cannot be knitted as they are";
+  }
+  if (!refused) text << "; --fine-features refuse stops here instead";
+  say(text.str());
+}
 
 std::optional<StitchMeshOutcome> mesh_stitches(const Cut& cut, const StitchMeshStageParams& params,
                                                const std::string& source,
                                                knitout::DiagnosticSink& sink) {
   const auto start = std::chrono::steady_clock::now();
-  const LabelledDisc disc = labelled_disc(cut.mesh);
   const std::size_t errors_before = sink.error_count();
+  // Fine features are judged before meshing: refused, nothing is meshed.
+  FineFeatures fine = fine_features(cut, params);
+  report_fine_features(fine, params.refuse_fine_features, source, sink);
+  if (sink.error_count() != errors_before) return std::nullopt;
+  const LabelledDisc disc = labelled_disc(cut.mesh);
   for (const std::string& p : check_disc(disc)) sink.error(source, 0, 0, "P085", p);
   if (sink.error_count() != errors_before) return std::nullopt;
   StitchMeshParams mesher = params.mesher;
@@ -41,15 +122,24 @@ std::optional<StitchMeshOutcome> mesh_stitches(const Cut& cut, const StitchMeshS
     }
     // The rows depend on where the cuts run: another cut of the same
     // garment usually meshes.
-    sink.error(source, 0, 0, "P086",
-               "what to change: cut the garment again with another --seed (or at another size); "
-               "the rows follow the cut, and another cut gives other rows");
+    std::string change =
+        "what to change: cut the garment again with another --seed (or at another size); the "
+        "rows follow the cut, and another cut gives other rows";
+    if (!fine.parts.empty()) {
+      std::ostringstream text;
+      text << std::fixed << std::setprecision(1) << "; the garment has " << fine.parts.size()
+           << " fine features narrower than " << fine.bound_mm
+           << " mm round (P088 above), where rows have little room: a larger size helps most";
+      change += text.str();
+    }
+    sink.error(source, 0, 0, "P086", change);
     return std::nullopt;
   }
   StitchMeshOutcome outcome;
   outcome.cut_id = cut.id;
   StitchMeshReport& report = outcome.report;
   report.gauge = params.gauge;
+  report.fine = std::move(fine);
   // Stitches more than a wale off the cut mesh span a gap of it
   // (docs/stitch-mesh.md, "Fans").
   report.off_surface = off_surface_faces(result.mesh, disc, params.gauge.wale_mm);

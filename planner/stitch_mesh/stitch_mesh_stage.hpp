@@ -5,8 +5,11 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
-#include "planner/cut/cut.hpp"
+#include "knitout/diagnostic.hpp"
+#include "planner/cut/cut_stage.hpp"
+#include "planner/mesh/girth.hpp"
 #include "planner/stitch_mesh/gauge.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
 #include "planner/stitch_mesh/stitch_mesher.hpp"
@@ -16,7 +19,30 @@ namespace planner {
 struct StitchMeshStageParams {
   StitchGauge gauge;        // the target course and wale lengths (§6.1, §8.1)
   StitchMeshParams mesher;  // its course_mm and wale_mm are the gauge's
+  // Fine features (docs/stitch-mesh.md): parts of the garment whose girth
+  // (the cut's girth_mm) is below this many of the larger stitch side.
+  double min_girth_stitches = 3.0;
+  // Stop with the list (P089) instead of knitting them at the gauge's
+  // resolution with a warning (P088).
+  bool refuse_fine_features = false;
 };
+
+// The fine features of a cut at a stitch size: the parts of Q whose girth
+// is below the bound, narrowest first.
+struct FineFeatures {
+  double bound_mm = 0.0;   // min_girth_stitches x the larger stitch side
+  double stitch_mm = 0.0;  // that stitch side
+  std::vector<NarrowPart> parts;
+  // Longest side of the garment, mm (from the cut), for the size that
+  // would knit every part at the bound.
+  double size_mm = 0.0;
+};
+FineFeatures fine_features(const Cut& cut, const StitchMeshStageParams& params);
+
+// The diagnostics of `found` into `sink` under `code`: one per part (the
+// first ten), then what would knit them as they are.
+void report_fine_features(const FineFeatures& found, bool refused, const std::string& source,
+                          knitout::DiagnosticSink& sink);
 
 // The stage's figures (stitch-mesh.json's "report", report.json's "stitch_mesh").
 struct StitchMeshReport {
@@ -25,6 +51,7 @@ struct StitchMeshReport {
   StitchMeshStats stats;
   StabilityCounts stability;
   OffSurface off_surface;
+  FineFeatures fine;
   double disc_area_mm2 = 0;
   double seconds = 0;  // the whole stage
 };

@@ -6,7 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "planner/mesh/mesh_io.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
+#include "tests/planner/test_meshes.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -128,6 +130,52 @@ TEST(StitchMeshCliTest, SaysWhatIsMissingAndWritesNothing) {
   EXPECT_NE(r.err.find("[P020]"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(dir / "stitch-mesh.smobj"));
   EXPECT_FALSE(std::filesystem::exists(dir / "report.json"));
+}
+
+TEST(StitchMeshCliTest, FineFeaturesAreKnittedWithAWarningOrRefused) {
+  // A ring whose tube is 7.5 mm round: under 3 stitches of 2.875 mm.
+  const wearknit::test::TempDir folder("stitch-cli-fine");
+  const auto& dir = folder.path();
+  {
+    std::ofstream out(dir / "ring.obj");
+    planner::write_obj(out, planner::test_meshes::torus(64, 12, 15.0, 1.2));
+  }
+  const std::string cut_dir = (dir / "cut").string();
+  const auto cut = run_wearknit("cut '" + (dir / "ring.obj").string() + "' -q --no-pictures -o '" +
+                                cut_dir + "'");
+  ASSERT_EQ(cut.exit_code, 0) << cut.err;
+  // Refused: the list with the place and girth, what would work, nothing written.
+  auto r = run_wearknit("stitch-mesh '" + cut_dir + "' --fine-features refuse --no-picture");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("error: [P089] fine feature 1 of 1: 7.5 mm round (2.6 stitches"),
+            std::string::npos)
+      << r.err;
+  const std::string larger = "make the garment 1.15 times larger";
+  EXPECT_NE(r.err.find(larger), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(cut_dir) / "stitch-mesh.smobj"));
+  // Knitted (the default): a warning, and the figures in the report.
+  r = run_wearknit("stitch-mesh '" + cut_dir + "' --no-picture");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: [P088] fine feature 1 of 1"), std::string::npos) << r.err;
+  const auto report =
+      nlohmann::json::parse(read_file(std::filesystem::path(cut_dir) / "stitch-mesh.json"));
+  const auto& fine = report.at("report").at("fine_features");
+  EXPECT_DOUBLE_EQ(fine.at("bound_mm").get<double>(), 3 * 2.875);
+  ASSERT_EQ(fine.at("parts").size(), 1u);
+  EXPECT_NEAR(fine.at("parts")[0].at("girth_mm").get<double>(), 7.5, 0.4);
+  // The size the message names knits the ring without the warning.
+  const std::string cut2 = (dir / "cut2").string();
+  ASSERT_EQ(run_wearknit("cut '" + (dir / "ring.obj").string() +
+                         "' --scale 1.16 -q --no-pictures -o '" + cut2 + "'")
+                .exit_code,
+            0);
+  r = run_wearknit("stitch-mesh '" + cut2 + "' --fine-features refuse --no-picture");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("P08"), std::string::npos) << r.err;
+  // A bad choice is a usage error.
+  r = run_wearknit("stitch-mesh '" + cut_dir + "' --fine-features maybe");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "wearknit stitch-mesh: --fine-features takes knit or refuse, not 'maybe'\n");
 }
 
 }  // namespace
