@@ -13,6 +13,14 @@
 namespace wearknit::test {
 namespace {
 
+std::vector<std::array<int, 3>> fan_triangles(const CoverMesh& mesh) {
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& f : mesh.faces) {
+    for (std::size_t i = 1; i + 1 < f.size(); ++i) triangles.push_back({f[0], f[i], f[i + 1]});
+  }
+  return triangles;
+}
+
 cloth::SignedDistanceField unit_sphere_field(int resolution = 32) {
   const CoverMesh ball = sphere_mesh(1.0, 32, 16);
   cloth::SdfParams params;
@@ -22,10 +30,7 @@ cloth::SignedDistanceField unit_sphere_field(int resolution = 32) {
 
 TEST(SdfTest, WindingNumberIsOneInsideAndZeroOutside) {
   const CoverMesh ball = sphere_mesh(1.0, 24, 12);
-  std::vector<std::array<int, 3>> triangles;
-  for (const auto& f : ball.faces) {
-    for (std::size_t i = 1; i + 1 < f.size(); ++i) triangles.push_back({f[0], f[i], f[i + 1]});
-  }
+  const std::vector<std::array<int, 3>> triangles = fan_triangles(ball);
   const cloth::TriangleMeshQuery query(ball.positions, triangles);
   // The far field is a dipole approximation: a few percent, far from 1/2.
   EXPECT_NEAR(query.winding_number({0, 0, 0}), 1.0, 0.05);
@@ -53,10 +58,7 @@ TEST(SdfTest, ClosestPointLiesOnTheNearestTriangle) {
 
 TEST(SdfTest, RayHitFindsTheFirstCrossingItCounts) {
   const CoverMesh ball = sphere_mesh(1.0, 48, 24);
-  std::vector<std::array<int, 3>> triangles;
-  for (const auto& f : ball.faces) {
-    for (std::size_t i = 1; i + 1 < f.size(); ++i) triangles.push_back({f[0], f[i], f[i + 1]});
-  }
+  const std::vector<std::array<int, 3>> triangles = fan_triangles(ball);
   const cloth::TriangleMeshQuery query(ball.positions, triangles);
   const Vec3 x = Vec3::UnitX();
   // From the centre: the sphere's radius, less the facets' sag.
@@ -79,10 +81,7 @@ TEST(SdfTest, WindingNumberSignSurvivesAHole) {
   // would flip at random, the winding number stays near 1 in the middle.
   CoverMesh ball = sphere_mesh(1.0, 24, 12);
   ball.faces.erase(ball.faces.begin(), ball.faces.begin() + 24);  // the pole fan
-  std::vector<std::array<int, 3>> triangles;
-  for (const auto& f : ball.faces) {
-    for (std::size_t i = 1; i + 1 < f.size(); ++i) triangles.push_back({f[0], f[i], f[i + 1]});
-  }
+  const std::vector<std::array<int, 3>> triangles = fan_triangles(ball);
   const cloth::TriangleMeshQuery query(ball.positions, triangles);
   EXPECT_GT(query.winding_number({0, 0, -0.2}), 0.8);
   EXPECT_LT(query.winding_number({0, 0, -3}), 0.2);
