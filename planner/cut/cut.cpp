@@ -530,7 +530,9 @@ class PatchGrower {
       pending.pop_back();
       if (!in_b_[at(a)]) continue;
       const int b = next_b_[at(a)];
-      if (b != q_.twin(a) || b_size_ <= 2) continue;
+      // The last two edges of a closed surface's cut stay: a cut of one
+      // edge splits no vertex, and the surface would not open.
+      if (b != q_.twin(a) || b_size_ <= 4) continue;
       if ((cut_.direction[at(a)] + 2) % 4 != cut_.direction[at(b)]) continue;
       const int before = prev_b_[at(a)];
       const int after = next_b_[at(b)];

@@ -138,6 +138,21 @@ TEST(CutTest, DiscNeedsNoCut) {
   EXPECT_EQ(cells.size(), 30u);
 }
 
+TEST(CutTest, ASpindleWithFannedPolesStillOpensIntoADisc) {
+  // Quads round the axis, a fan of triangles at each pole: the growth can
+  // fuse all of the cut but one edge, and a cut of one edge splits no
+  // vertex. The last two edges stay, so the disc opens.
+  for (const int segments : {4, 8, 16}) {
+    const PolygonMesh spindle = test_meshes::revolution(
+        60.0, 10, segments, [](double z) { return 1.0 + 0.2 * z * (60.0 - z) / 30.0; });
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+      const CutMesh cut = cut_of(spindle, seed);
+      EXPECT_EQ(verify_cut(cut), std::vector<std::string>{}) << segments << " seed " << seed;
+      EXPECT_GE(std::count(cut.cut_edge.begin(), cut.cut_edge.end(), true), 2);
+    }
+  }
+}
+
 TEST(CutTest, RegularTorusIsOpenedByTwoLoops) {
   const CutMesh cut = cut_of(test_meshes::torus(10, 6));
   const auto problems = verify_cut(cut);
