@@ -268,9 +268,10 @@ std::string write_cut(const std::string& dir, const Cut& cut, const CutPictures&
                    {"cut_edges", summary.cut_edges},
                    {"cut_length_mm", summary.cut_length_mm},
                    {"arcs", arcs},
-                   {"girth_mm", girth_json(cut.girth_mm)},
                    {"report", report_json(mesh, summary, cut.report)}};
   cut_file["report"]["picture_px"] = pictures.draw ? pictures.panel_px : 0;
+  // A cut made without the garment (a proxy cut as it is) records no girth.
+  if (!cut.girth_mm.empty()) cut_file["girth_mm"] = girth_json(cut.girth_mm);
   const std::pair<const char*, const std::string*> objs[] = {{"proxy.obj", &proxy},
                                                              {"cut-mesh.obj", &disc}};
   for (const auto& [name, text] : objs) {
