@@ -80,6 +80,15 @@ int run_dat_info(const std::vector<std::string>& args, Context& context) {
     print_diagnostics(context, sink.diagnostics(), DiagnosticFormat::Text);
     return kExitUsage;
   }
+  // A picture too large to draw is refused from the header's sizes, before
+  // the raster is decoded.
+  if (const auto size = dat::declared_size(bytes); !png.empty() && size) {
+    const std::string failure = dat::png_size_problem(size->first, size->second, scale);
+    if (!failure.empty()) {
+      context.err << "wearknit dat-info: " << input << ": " << failure << '\n';
+      return kExitUsage;
+    }
+  }
   const dat::Raster raster = dat::decode(bytes, input, sink);
   if (sink.has_errors()) {
     print_diagnostics(context, sink.diagnostics(), DiagnosticFormat::Text);

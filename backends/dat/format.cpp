@@ -94,6 +94,12 @@ std::optional<RunRows> scan_runs(std::span<const std::uint8_t> bytes, std::strin
   }
   const std::uint64_t pixels =
       static_cast<std::uint64_t>(rows.width) * static_cast<std::uint64_t>(rows.height);
+  if (pixels > kMaxRasterPixels) {
+    return fail("D047", "DAT raster too large: the header declares " + std::to_string(rows.width) +
+                            " x " + std::to_string(rows.height) + " pixels, more than the " +
+                            std::to_string(kMaxRasterPixels) +
+                            " this reader takes (no machine bed needs them)");
+  }
   // Each pair covers at most 255 pixels: a raster the data cannot fill is
   // rejected before anything is allocated for it.
   const std::size_t pairs = data.size() / 2;
@@ -159,6 +165,16 @@ Raster decode(std::span<const std::uint8_t> bytes, std::string_view source,
   return raster;
 }
 
+std::optional<std::pair<int, int>> declared_size(std::span<const std::uint8_t> bytes) {
+  if (bytes.size() < 8) return std::nullopt;
+  const unsigned x_min = get_u16(bytes, 0);
+  const unsigned y_min = get_u16(bytes, 2);
+  const unsigned x_max = get_u16(bytes, 4);
+  const unsigned y_max = get_u16(bytes, 6);
+  if (x_max < x_min || y_max < y_min) return std::nullopt;
+  return std::pair(static_cast<int>(x_max - x_min + 1), static_cast<int>(y_max - y_min + 1));
+}
+
 std::vector<std::uint8_t> read_bytes(const std::string& path, knitout::DiagnosticSink& sink,
                                      bool& ok) {
   ok = false;
@@ -167,8 +183,24 @@ std::vector<std::uint8_t> read_bytes(const std::string& path, knitout::Diagnosti
     sink.error(path, 0, 0, "D049", std::string("cannot open file: ") + std::strerror(errno));
     return {};
   }
-  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                                  std::istreambuf_iterator<char>());
+  std::vector<std::uint8_t> bytes;
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.clear();
+  in.seekg(0);
+  in.clear();
+  if (size > 0) {
+    // One read into a buffer of the file's size: no growth, no copy.
+    bytes.resize(static_cast<std::size_t>(size));
+    in.read(reinterpret_cast<char*>(bytes.data()), size);
+    if (in.gcount() != size) {
+      sink.error(path, 0, 0, "D049", "cannot read file (it changed while being read)");
+      return {};
+    }
+  } else {
+    // Not a regular file (a pipe, a device): read to its end.
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   if (in.bad()) {
     sink.error(path, 0, 0, "D049", "cannot read file");
     return {};

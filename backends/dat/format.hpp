@@ -18,6 +18,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "knitout/diagnostic.hpp"
@@ -31,6 +32,11 @@ inline constexpr std::size_t kDataOffset = 0x600;
 inline constexpr std::uint16_t kHeaderMagic = 1000;  // at offsets 8 and 16
 inline constexpr int kMaxRunLength = 255;
 inline constexpr int kMaxDimension = 0xFFFF;  // x-max / y-max are u16
+// The largest raster read or written, in pixels (one byte each): 4096 columns
+// by 65536 rows, far beyond any machine's bed. The header alone can declare
+// 2^32 pixels; a file declaring more than this is refused (D047) before
+// anything is allocated for it (docs/dat.md).
+inline constexpr std::uint64_t kMaxRasterPixels = std::uint64_t{1} << 28;
 
 // The palette of the swg091n2 profile, R[256] G[256] B[256] (palette.cpp).
 extern const std::array<std::uint8_t, kPaletteBytes> kPalette;
@@ -82,14 +88,22 @@ struct RunRows {
 std::optional<RunRows> scan_runs(std::span<const std::uint8_t> bytes, std::string_view source,
                                  knitout::DiagnosticSink& sink);
 
-// Decodes DAT bytes. Problems (too short, bad dimensions, run-length data that
-// is truncated, odd, or crosses a row end) are error diagnostics D040-D045
+// Decodes DAT bytes. Problems (too short, bad dimensions, a raster larger
+// than kMaxRasterPixels, run-length data that is truncated, odd, or crosses
+// a row end) are error diagnostics D040-D047
 // against `source` with the byte offset in the message; the result is then
 // empty (width 0). Never reads out of bounds, whatever the bytes.
 Raster decode(std::span<const std::uint8_t> bytes, std::string_view source,
               knitout::DiagnosticSink& sink);
 
-// Reads a whole file; a file that cannot be read is error D049.
+// The raster size the header declares (width, height), without checking the
+// run-length data; nullopt when the bytes are shorter than the header or
+// its sizes are reversed. Lets a caller refuse an output it cannot make
+// before the raster is decoded.
+std::optional<std::pair<int, int>> declared_size(std::span<const std::uint8_t> bytes);
+
+// Reads a whole file into a buffer of its size; a file that cannot be read
+// is error D049.
 std::vector<std::uint8_t> read_bytes(const std::string& path, knitout::DiagnosticSink& sink,
                                      bool& ok);
 

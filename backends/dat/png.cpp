@@ -31,16 +31,26 @@ struct PngWriter {
 
 }  // namespace
 
-std::string write_png(std::ostream& out, const Raster& raster, int scale) {
+std::string png_size_problem(int width, int height, int scale) {
   if (scale < 1 || scale > 64) return "PNG scale must be 1..64, not " + std::to_string(scale);
-  if (raster.width <= 0 || raster.height <= 0) return "empty raster";
-  const long long png_width = static_cast<long long>(raster.width) * scale;
-  const long long png_height = static_cast<long long>(raster.height) * scale;
+  if (width <= 0 || height <= 0) return "empty raster";
+  const long long png_width = static_cast<long long>(width) * scale;
+  const long long png_height = static_cast<long long>(height) * scale;
   if (png_width > kMaxPngSide || png_height > kMaxPngSide) {
     return "a " + std::to_string(png_width) + " x " + std::to_string(png_height) +
-           " picture is too large (at most " + std::to_string(kMaxPngSide) +
-           " pixels a side); use a smaller --scale";
+           " picture is too large (at most " + std::to_string(kMaxPngSide) + " pixels a side)" +
+           (scale > 1 ? "; use a smaller --scale" : "");
   }
+  return {};
+}
+
+std::string write_png(std::ostream& out, const Raster& raster, int scale) {
+  if (std::string problem = png_size_problem(raster.width, raster.height, scale);
+      !problem.empty()) {
+    return problem;
+  }
+  const long long png_width = static_cast<long long>(raster.width) * scale;
+  const long long png_height = static_cast<long long>(raster.height) * scale;
   PngWriter writer;
   writer.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   if (writer.png == nullptr) return "libpng: cannot create writer";

@@ -13,6 +13,10 @@ namespace dat {
 
 inline constexpr int kMaxPngSide = 32768;  // pixels; larger pictures are refused
 
+// Why a width x height raster cannot be drawn at `scale` (scale out of
+// 1..64, picture larger than kMaxPngSide); empty when it can.
+std::string png_size_problem(int width, int height, int scale);
+
 // Writes the PNG to `out`. Returns an empty string on success, else what
 // went wrong (scale out of 1..64, picture larger than kMaxPngSide, libpng
 // failure).

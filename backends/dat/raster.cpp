@@ -5,6 +5,8 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "backends/dat/reader.hpp"
 #include "knitout/writer.hpp"
@@ -142,21 +144,37 @@ bool design_size(const PassList& list, knitout::DiagnosticSink& sink, std::int64
     sink.error(list.source, 0, 0, "D029", "nothing to knit: the program forms no carriage pass");
     return false;
   }
+  // The raster grows with every pass: the first pass that makes it too
+  // large for a DAT header (or for kMaxRasterPixels) is the line named.
   min_slot = list.passes.front().min_slot;
   max_slot = list.passes.front().max_slot;
-  for (const Pass& pass : list.passes) {
+  auto size_at = [](std::int64_t low, std::int64_t high, std::size_t passes) {
+    return std::pair<std::int64_t, std::int64_t>(
+        kLeftSpace + (high - low + 1) + kRightSpace,
+        kTopSpace + static_cast<std::int64_t>(passes) + kBottomSpace + 2 * kFixedCourses);
+  };
+  auto too_large = [](std::pair<std::int64_t, std::int64_t> size) {
+    return size.first > kMaxDimension + 1 || size.second > kMaxDimension + 1 ||
+           static_cast<std::uint64_t>(size.first) * static_cast<std::uint64_t>(size.second) >
+               kMaxRasterPixels;
+  };
+  std::uint32_t first_line = 0;
+  for (std::size_t i = 0; i < list.passes.size(); ++i) {
+    const Pass& pass = list.passes[i];
     min_slot = std::min(min_slot, pass.min_slot);
     max_slot = std::max(max_slot, pass.max_slot);
+    if (first_line == 0 && too_large(size_at(min_slot, max_slot, i + 1))) first_line = pass.line;
   }
-  width = kLeftSpace + (max_slot - min_slot + 1) + kRightSpace;
-  height =
-      kTopSpace + static_cast<std::int64_t>(list.passes.size()) + kBottomSpace + 2 * kFixedCourses;
-  if (width > kMaxDimension + 1 || height > kMaxDimension + 1) {
-    sink.error(list.source, 0, 0, "D030",
+  std::tie(width, height) = size_at(min_slot, max_slot, list.passes.size());
+  if (too_large({width, height})) {
+    sink.error(list.source, first_line, 0, "D030",
                "the design needs a " + std::to_string(width) + " x " + std::to_string(height) +
                    " raster (needle slots " + std::to_string(min_slot) + ".." +
                    std::to_string(max_slot) + ", " + std::to_string(list.passes.size()) +
-                   " passes); a DAT holds at most 65536 x 65536");
+                   " passes); a DAT holds at most 65536 x 65536 and " +
+                   std::to_string(kMaxRasterPixels) +
+                   " pixels, and this pass is the first "
+                   "beyond that");
     return false;
   }
   if (list.position == Position::Keep && !(min_slot > 0 && max_slot <= list.bed_width)) {

@@ -170,15 +170,44 @@ TEST(DatFormatTest, ScanRunsRejectsWhatDecodeRejects) {
             "t.dat: error: [D043] truncated DAT: the data ends in row 1 of 2 (6 pixels missing)");
 }
 
-TEST(DatFormatTest, HugeClaimedRasterIsRejectedBeforeAllocating) {
-  auto bytes = file_prefix(65536, 65536);
+TEST(DatFormatTest, RasterTheDataCannotFillIsRejectedBeforeAllocating) {
+  auto bytes = file_prefix(4096, 65536);
   bytes.push_back(0);
   bytes.push_back(255);
   knitout::DiagnosticSink sink;
   decode(bytes, "t.dat", sink);
   EXPECT_EQ(first_error(sink),
-            "t.dat: error: [D043] truncated DAT: 1 run-length pairs cannot fill a 65536 x 65536 "
+            "t.dat: error: [D043] truncated DAT: 1 run-length pairs cannot fill a 4096 x 65536 "
             "raster");
+}
+
+// A file whose runs really do fill a 65536 x 65536 raster (34 MB of pairs
+// for 4 GiB of pixels) is refused by its declared size, before the pairs
+// are walked or a pixel is allocated.
+TEST(DatFormatTest, RasterBeyondTheLimitIsRefusedByItsDeclaredSize) {
+  auto bytes = file_prefix(65536, 65536);
+  const std::size_t pairs_per_row = 65536 / 255 + 1;
+  for (std::size_t i = 0; i + 1 < pairs_per_row; ++i) bytes.insert(bytes.end(), {1, 255});
+  bytes.insert(bytes.end(), {1, static_cast<std::uint8_t>(65536 % 255)});
+  knitout::DiagnosticSink sink;
+  EXPECT_FALSE(scan_runs(bytes, "t.dat", sink).has_value());
+  EXPECT_EQ(first_error(sink),
+            "t.dat: error: [D047] DAT raster too large: the header declares 65536 x 65536 pixels, "
+            "more than the 268435456 this reader takes (no machine bed needs them)");
+  EXPECT_EQ(declared_size(bytes), std::optional(std::pair(65536, 65536)));
+}
+
+TEST(DatFormatTest, RasterAtTheLimitIsRead) {
+  const int width = 4096;
+  const int height = static_cast<int>(kMaxRasterPixels / width);
+  auto bytes = file_prefix(width, height);
+  std::vector<std::uint8_t> row;
+  for (int i = 0; i < width / 256; ++i) row.insert(row.end(), {1, 255, 2, 1});
+  for (int y = 0; y < height; ++y) bytes.insert(bytes.end(), row.begin(), row.end());
+  knitout::DiagnosticSink sink;
+  const std::optional<RunRows> rows = scan_runs(bytes, "t.dat", sink);
+  ASSERT_TRUE(rows.has_value()) << first_error(sink);
+  EXPECT_EQ(rows->height, height);
 }
 
 // Everything dat-info does with a file: decode, read the layout, describe
