@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "backends/dat/format.hpp"
+#include "devices/file_view.hpp"
 #include "knitout/parser.hpp"
 
 namespace devices {
@@ -50,8 +51,8 @@ Result<std::vector<std::size_t>> split_knitout(std::span<const std::uint8_t> byt
   const std::size_t line_count = line_start.size() - 1;
   // Direction of each line's instruction: 0 none, 1 '+', 2 '-'; -1 = no instruction.
   std::vector<int> kind(line_count + 2, -1);
-  std::string text(bytes.begin(), bytes.end());
-  std::istringstream in(text);
+  SpanStreambuf view(bytes);
+  std::istream in(&view);
   knitout::DiagnosticSink sink(1);
   knitout::Reader reader(in, "job", sink);
   knitout::Instruction instruction;
@@ -140,18 +141,120 @@ Result<std::vector<std::size_t>> split_rows(JobFormat format, std::span<const st
                     "not a DAT (.dat) or knitout (.k) job: cannot tell its rows");
 }
 
-bool valid_job_name(std::string_view name) {
-  if (name.empty() || name.size() > 255 || name[0] == '.') return false;
-  for (char c : name) {
-    if (c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7F) return false;
+namespace {
+
+// Length of the UTF-8 sequence starting at text[at], or 0 when it is not a
+// valid one (overlong forms, surrogates and code points past U+10FFFF are
+// invalid).
+std::size_t utf8_sequence(std::string_view text, std::size_t at) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  const unsigned lead = byte(at);
+  if (lead < 0x80) return 1;
+  std::size_t length = 0;
+  unsigned code = 0;
+  if (lead >= 0xC2 && lead <= 0xDF) {
+    length = 2;
+    code = lead & 0x1F;
+  } else if (lead >= 0xE0 && lead <= 0xEF) {
+    length = 3;
+    code = lead & 0x0F;
+  } else if (lead >= 0xF0 && lead <= 0xF4) {
+    length = 4;
+    code = lead & 0x07;
+  } else {
+    return 0;
+  }
+  if (at + length > text.size()) return 0;
+  for (std::size_t i = 1; i < length; ++i) {
+    if ((byte(at + i) & 0xC0) != 0x80) return 0;
+    code = (code << 6) | (byte(at + i) & 0x3F);
+  }
+  const unsigned smallest = length == 2 ? 0x80 : length == 3 ? 0x800 : 0x10000;
+  if (code < smallest || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return 0;
+  return length;
+}
+
+bool ends_with_ignoring_case(std::string_view text, std::string_view suffix) {
+  if (text.size() < suffix.size()) return false;
+  for (std::size_t i = 0; i < suffix.size(); ++i) {
+    const char c = text[text.size() - suffix.size() + i];
+    if (std::tolower(static_cast<unsigned char>(c)) != suffix[i]) return false;
   }
   return true;
 }
 
+}  // namespace
+
+std::string job_name_problem(std::string_view name) {
+  const auto refuse = [&](const std::string& why) {
+    return "[J001] the job name '" + printable_name(name) + "' " + why;
+  };
+  if (name.empty()) return "[J001] the job has no name";
+  if (name.size() > kMaxJobNameBytes) {
+    return refuse("is " + std::to_string(name.size()) + " bytes long; a device stores names of " +
+                  "at most " + std::to_string(kMaxJobNameBytes) +
+                  " bytes (the files it derives from the name must fit the file system)");
+  }
+  for (std::size_t at = 0; at < name.size();) {
+    const std::size_t length = utf8_sequence(name, at);
+    if (length == 0) {
+      return refuse("is not valid UTF-8 (byte " + std::to_string(at) + ")");
+    }
+    const unsigned char c = static_cast<unsigned char>(name[at]);
+    if (c < 0x20 || c == 0x7F) return refuse("holds a control character");
+    if (c == '/' || c == '\\') return refuse("names a folder; a plain file name is needed");
+    if (std::string_view("\":*<>?|").find(static_cast<char>(c)) != std::string_view::npos) {
+      return refuse("holds '" + std::string(1, static_cast<char>(c)) +
+                    "', which a FAT-formatted stick cannot store");
+    }
+    at += length;
+  }
+  if (name.front() == '.') return refuse("is hidden (starts with a dot)");
+  if (name.back() == ' ' || name.back() == '.') {
+    return refuse("ends in a space or a dot, which a FAT-formatted stick drops");
+  }
+  for (const std::string_view suffix : {".manifest.json", ".part", ".knitlog"}) {
+    if (ends_with_ignoring_case(name, suffix)) {
+      return refuse("ends in '" + std::string(suffix) +
+                    "', which the device uses for its own files");
+    }
+  }
+  if (name.find(".tmp-") != std::string_view::npos) {
+    return refuse("holds '.tmp-', which the device uses for its temporary files");
+  }
+  return {};
+}
+
+std::string printable_name(std::string_view name) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string out;
+  for (std::size_t at = 0; at < name.size();) {
+    const std::size_t length = utf8_sequence(name, at);
+    const unsigned char c = static_cast<unsigned char>(name[at]);
+    if (length == 0 || c < 0x20 || c == 0x7F) {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+      ++at;
+    } else {
+      out.append(name.substr(at, length));
+      at += length;
+    }
+  }
+  if (out.size() > 80) {
+    // Cut at character boundaries: keep the start and the end.
+    std::size_t head = 40;
+    while (head > 0 && (static_cast<unsigned char>(out[head]) & 0xC0) == 0x80) --head;
+    std::size_t tail = out.size() - 30;
+    while (tail < out.size() && (static_cast<unsigned char>(out[tail]) & 0xC0) == 0x80) ++tail;
+    out = out.substr(0, head) + "..." + out.substr(tail);
+  }
+  return out;
+}
+
 Result<Job> make_job(std::string name, Bytes bytes) {
-  if (!valid_job_name(name)) {
-    return make_error(ErrorClass::InvalidArgument,
-                      "'" + name + "' cannot name a job on a device (a plain file name is needed)");
+  if (std::string problem = job_name_problem(name); !problem.empty()) {
+    return make_error(ErrorClass::InvalidArgument, problem);
   }
   Job job;
   job.format = detect_format(name, bytes);
@@ -165,11 +268,10 @@ Result<Job> make_job(std::string name, Bytes bytes) {
 }
 
 Result<Job> load_job(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return os_error("cannot open " + path.string());
-  Bytes bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return os_error("cannot read " + path.string());
-  auto job = make_job(path.filename().string(), std::move(bytes));
+  // One read into a buffer of the file's size: the job costs its size once.
+  auto bytes = read_file(path);
+  if (!bytes) return bytes.error();
+  auto job = make_job(path.filename().string(), std::move(bytes.value()));
   if (!job) {
     Error e = job.error();
     e.message = path.string() + ": " + e.message;

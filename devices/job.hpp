@@ -57,9 +57,25 @@ Result<Job> make_job(std::string name, Bytes bytes);
 // Reads a job file.
 Result<Job> load_job(const std::filesystem::path& path);
 
-// True for names a device may store a job under: no folders, no leading dot,
-// 1..255 bytes, printable.
-bool valid_job_name(std::string_view name);
+// The longest job name, in bytes. The longest file a store derives from a
+// name, `NAME.manifest.json.tmp-XXXXXX` (docs/protocol.md §7), is 25 bytes
+// longer, and file systems hold names of at most 255 bytes.
+inline constexpr std::size_t kMaxJobNameBytes = 200;
+
+// Why a device may not store a job under `name` ("[J001] ..."), or an empty
+// string when it may (docs/protocol.md §7): valid UTF-8 of 1..200 bytes; no
+// folders, control characters or characters a FAT stick cannot hold; not
+// hidden; not a name the store derives for its own files (`*.manifest.json`,
+// `*.part`, `*.knitlog`, temporary files).
+std::string job_name_problem(std::string_view name);
+inline bool valid_job_name(std::string_view name) {
+  return job_name_problem(name).empty();
+}
+
+// The name as text that is safe to print and to write into JSON: bytes that
+// are not valid UTF-8 and control characters become `\xNN`; longer than 80
+// bytes, the middle is left out.
+std::string printable_name(std::string_view name);
 
 // What a device runs on a received job before knitting a row: empty string =
 // accepted, otherwise the reason for refusing it. The application supplies

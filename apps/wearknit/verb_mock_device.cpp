@@ -1,11 +1,12 @@
 // wearknit mock-device: the loopback mock knitting machine on a real link.
 #include <csignal>
 #include <iostream>
-#include <sstream>
+#include <istream>
 
 #include "apps/wearknit/cli.hpp"
 #include "backends/dat/format.hpp"
 #include "backends/dat/reader.hpp"
+#include "devices/file_view.hpp"
 #include "devices/mock_server.hpp"
 #include "simulators/bed/validate.hpp"
 
@@ -26,7 +27,8 @@ devices::JobCheckers project_job_checkers() {
   // the parser's syntax errors (K codes) and the machine's (V codes) alike.
   // Warnings do not stop a machine, so they do not refuse a job.
   checkers.knitout = [](const std::string& name, std::span<const std::uint8_t> bytes) {
-    std::istringstream in(std::string(bytes.begin(), bytes.end()));
+    devices::SpanStreambuf view(bytes);  // read in place: no copy of the job
+    std::istream in(&view);
     knitout::DiagnosticSink sink(20);
     bed::validate_stream(in, name, bed::default_profile(), sink);
     for (const knitout::Diagnostic& d : sink.sorted()) {
