@@ -1,17 +1,21 @@
 #include "devices/device_engine.hpp"
 
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
 #include "devices/debug.hpp"
+#include "devices/file_view.hpp"
 #include "knitout/output_file.hpp"
 
 namespace devices {
@@ -63,6 +67,44 @@ Bytes read_all(const std::filesystem::path& path) {
   return Bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
+// JSON text of `j`; bytes that are not UTF-8 (a refusal reason may quote
+// them from a job) are written as U+FFFD rather than stopping the device.
+std::string json_text(const nlohmann::json& j) {
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+// The check of a complete job (docs/protocol.md §4): size, SHA-256, row
+// count and the format's checker. Returns the reason to refuse it, or an
+// empty string. Runs on a worker thread for large jobs: it reads the file
+// through a memory map and touches nothing else.
+std::string check_job(const std::filesystem::path& file, const ManifestMessage& manifest,
+                      const JobCheckers& checkers) {
+  try {
+    auto mapped = MappedFile::open(file);
+    if (!mapped) return "[J007] the device cannot read its copy: " + mapped.error().text();
+    const std::span<const std::uint8_t> bytes = mapped.value().bytes();
+    if (bytes.size() != manifest.size) {
+      return "[J004] received " + std::to_string(bytes.size()) + " bytes, the manifest says " +
+             std::to_string(manifest.size);
+    }
+    const Sha256 digest = sha256(bytes);
+    if (digest != manifest.sha256) {
+      return "[J005] SHA-256 of the received bytes " + to_hex(digest) +
+             " differs from the manifest's " + to_hex(manifest.sha256);
+    }
+    auto rows = split_rows(manifest.format, bytes);
+    if (!rows) return "[J006] " + rows.error().message;
+    if (rows.value().size() - 1 != manifest.rows) {
+      return "[J006] the job has " + std::to_string(rows.value().size() - 1) +
+             " rows, the manifest says " + std::to_string(manifest.rows);
+    }
+    const auto& check = manifest.format == JobFormat::Dat ? checkers.dat : checkers.knitout;
+    return check ? check(manifest.name, bytes) : std::string();
+  } catch (const std::bad_alloc&) {
+    return "[J007] the device ran out of memory checking the job";
+  }
+}
+
 JobState state_from_string(const std::string& s) {
   for (int i = 0; i <= 7; ++i) {
     if (to_string(static_cast<JobState>(i)) == s) return static_cast<JobState>(i);
@@ -85,6 +127,10 @@ Result<std::unique_ptr<DeviceEngine>> DeviceEngine::open(DeviceConfig config) {
   return engine;
 }
 
+DeviceEngine::~DeviceEngine() {
+  if (check_.valid()) check_.wait();
+}
+
 std::filesystem::path DeviceEngine::part_path() const {
   return state_dir() / ("job-" + std::to_string(job_id_) + ".part");
 }
@@ -98,10 +144,63 @@ void DeviceEngine::event(const std::string& text) const {
   if (config_.on_event) config_.on_event(text);
 }
 
+void DeviceEngine::reset_state() {
+  job_id_ = 0;
+  state_ = JobState::Idle;
+  paused_ = false;
+  alarm_ = Alarm::None;
+  yarn_break_fired_ = false;
+  stop_fired_ = false;
+  manifest_ = ManifestMessage{};
+  received_ = 0;
+  bytes_received_ = 0;
+  knitted_ = 0;
+  reason_.clear();
+  write_through_ = false;
+}
+
+void DeviceEngine::remove_stale_temporaries() {
+  // A power cut between creating a temporary file and renaming it leaves
+  // the temporary behind; no job may be named like one (job_name_problem).
+  std::error_code ec;
+  for (const auto& folder : {config_.store, state_dir()}) {
+    for (auto it = std::filesystem::directory_iterator(folder, ec);
+         !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
+      const std::string name = it->path().filename().string();
+      const bool temporary =
+          name.find(".tmp-") != std::string::npos || (name.size() > 4 && name.ends_with(".tmp"));
+      if (!temporary || !it->is_regular_file()) continue;
+      std::error_code removed;
+      std::filesystem::remove(it->path(), removed);
+      if (!removed) event("removed the temporary file " + it->path().string() + " of a power cut");
+    }
+  }
+}
+
+void DeviceEngine::quarantine_job(const std::string& why) {
+  const std::filesystem::path folder =
+      state_dir() / "quarantine" / ("job-" + std::to_string(job_id_));
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  for (const auto& file : {part_path(), knit_log_path(job_id_)}) {
+    if (std::filesystem::exists(file, ec))
+      std::filesystem::rename(file, folder / file.filename(), ec);
+  }
+  reason_ = why + "; its files are in " + folder.string();
+  state_ = JobState::Refused;
+  paused_ = false;
+  save();
+  event("job " + printable_name(manifest_.name) + ": quarantined: " + reason_);
+}
+
 Outcome DeviceEngine::load() {
+  if (check_.valid()) check_.wait();  // a power cut ends the check; its answer is lost
+  check_ = {};
   const auto path = state_dir() / "state.json";
   clear_buffers();
+  reset_state();
   knit_origin_s_ = -1;
+  remove_stale_temporaries();
   if (!std::filesystem::exists(path)) return Ok{};
   nlohmann::json j;
   try {
@@ -127,9 +226,40 @@ Outcome DeviceEngine::load() {
     jobs_done_ = j.at("jobs_done").get<std::uint64_t>();
     rows_knitted_total_ = j.at("rows_knitted_total").get<std::uint64_t>();
   } catch (const std::exception& e) {
-    return make_error(ErrorClass::InvalidArgument,
-                      path.string() + ": unreadable device state: " + e.what());
+    // A state the device cannot read (a damaged disk, a file from another
+    // program) is set aside, never a reason to stay down: the device comes
+    // up idle, and a host that resumes learns the job is gone.
+    const std::filesystem::path kept =
+        state_dir() / "quarantine" /
+        ("state-" +
+         std::to_string(std::chrono::duration_cast<std::chrono::seconds>(
+                            std::chrono::system_clock::now().time_since_epoch())
+                            .count()) +
+         ".json");
+    std::error_code ec;
+    std::filesystem::create_directories(kept.parent_path(), ec);
+    std::filesystem::rename(path, kept, ec);
+    if (ec) {
+      return make_error(ErrorClass::OsFailure, path.string() + ": unreadable device state (" +
+                                                   e.what() +
+                                                   ") that cannot be moved aside: " + ec.message());
+    }
+    clear_buffers();
+    reset_state();
+    event("unreadable device state " + path.string() + " (" + e.what() + "): kept as " +
+          kept.string() + "; the device starts idle");
+    return Ok{};
   }
+  if (job_unfinished(state_)) {
+    if (std::string problem = job_name_problem(manifest_.name); !problem.empty()) {
+      // Stored by an earlier version that took such names: it cannot be
+      // stored under its name, so it is refused and its files set aside.
+      manifest_.name = printable_name(manifest_.name);
+      quarantine_job("[J009] refused on start: " + problem);
+      return Ok{};
+    }
+  }
+  write_through_ = state_ == JobState::Receiving;
   // Rows past the durable counter may have reached the spool before a power
   // cut; they were never acknowledged as durable, so drop them.
   if (state_ == JobState::Receiving && std::filesystem::exists(part_path())) {
@@ -178,7 +308,7 @@ void DeviceEngine::save() {
   j["reason"] = reason_;
   j["jobs_done"] = jobs_done_;
   j["rows_knitted_total"] = rows_knitted_total_;
-  write_atomically(state_dir() / "state.json", j.dump(2) + "\n", config_.sync);
+  write_atomically(state_dir() / "state.json", json_text(j), config_.sync);
 }
 
 JobState DeviceEngine::state() const {
@@ -201,6 +331,7 @@ StatusMessage DeviceEngine::status() const {
   s.sha256 = manifest_.sha256;
   s.name = manifest_.name;
   s.reason = reason_;
+  s.rows_durable = received_;
   return s;
 }
 
@@ -214,7 +345,33 @@ void DeviceEngine::refuse(std::string reason) {
   event("job " + manifest_.name + ": refused: " + reason_);
 }
 
+void DeviceEngine::refuse_for_store_failure(const std::exception& failure) {
+  // The store could not take a row or a file (a full or failing disk): the
+  // job is refused with the reason, and the device keeps serving. When even
+  // the refusal cannot be written, the failure stops the device.
+  refuse(std::string("[J007] the device's store cannot take the job: ") + failure.what());
+}
+
 void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& replies) {
+  try {
+    handle_frame(frame, now_s, replies);
+  } catch (const std::runtime_error& failure) {
+    if (state_ != JobState::Receiving) throw;
+    refuse_for_store_failure(failure);
+    replies.push_back(Frame{FrameType::Status, 0, job_id_, frame.seq, encode(status())});
+  }
+}
+
+void DeviceEngine::tick(double now_s) {
+  try {
+    advance(now_s);
+  } catch (const std::runtime_error& failure) {
+    if (state_ != JobState::Receiving) throw;
+    refuse_for_store_failure(failure);
+  }
+}
+
+void DeviceEngine::handle_frame(const Frame& frame, double now_s, std::vector<Frame>& replies) {
   const auto reply_status = [&] {
     replies.push_back(Frame{FrameType::Status, 0, job_id_, frame.seq, encode(status())});
   };
@@ -231,6 +388,8 @@ void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& 
         reply_status();  // idempotent, or busy with another job: the host decides
         return;
       }
+      if (check_.valid()) check_.wait();  // the check of a cancelled job
+      check_ = {};
       job_id_ = frame.job_id;
       manifest_ = m;
       received_ = 0;
@@ -241,16 +400,30 @@ void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& 
       yarn_break_fired_ = false;
       stop_fired_ = false;
       reason_.clear();
+      write_through_ = false;
       clear_buffers();
       std::error_code ec;
       std::filesystem::remove(part_path(), ec);
       std::filesystem::remove(knit_log_path(job_id_), ec);
-      if (!valid_job_name(m.name)) {
-        refuse("'" + m.name + "' is not a plain file name");
+      // The name is checked before anything derived from it touches the
+      // disk; a refused one is kept in printable form (docs/protocol.md §7).
+      const std::string name_problem = job_name_problem(m.name);
+      if (!name_problem.empty()) manifest_.name = printable_name(m.name);
+      struct statvfs disk {};
+      const std::uint64_t free_bytes =
+          ::statvfs(config_.store.c_str(), &disk) == 0
+              ? static_cast<std::uint64_t>(disk.f_bavail) * disk.f_frsize
+              : std::numeric_limits<std::uint64_t>::max();
+      if (!name_problem.empty()) {
+        refuse(name_problem);
       } else if (m.format != JobFormat::Dat && m.format != JobFormat::Knitout) {
-        refuse("unknown job format " + std::to_string(static_cast<int>(m.format)));
-      } else if (m.rows == 0) {
-        refuse("the manifest announces no rows");
+        refuse("[J002] unknown job format " + std::to_string(static_cast<int>(m.format)));
+      } else if (m.rows == 0 || m.size == 0) {
+        refuse("[J003] the manifest announces an empty job");
+      } else if (m.size > config_.max_job_bytes || m.size > free_bytes) {
+        refuse("[J008] the job is " + std::to_string(m.size) + " bytes; the device takes " +
+               std::to_string(std::min(config_.max_job_bytes, free_bytes)) +
+               " (its limit, or its store's free space)");
       } else {
         state_ = JobState::Receiving;
         append_and_sync(part_path(), {}, config_.sync);
@@ -263,8 +436,8 @@ void DeviceEngine::handle(const Frame& frame, double now_s, std::vector<Frame>& 
       return;
     }
     case FrameType::Row: {
-      if (frame.job_id == job_id_ && state_ == JobState::Receiving && frame.seq < manifest_.rows &&
-          frame.payload.size() <= manifest_.size) {
+      if (frame.job_id == job_id_ && state_ == JobState::Receiving && !check_.valid() &&
+          frame.seq < manifest_.rows && frame.payload.size() <= manifest_.size) {
         take_row(frame.seq, frame.payload);
       }
       // Cumulative: duplicates are answered, never applied; a row past a
@@ -358,8 +531,10 @@ void DeviceEngine::take_row(std::uint32_t row, const Bytes& payload) {
     ahead_.emplace(row, payload);
   }
   // A full buffer goes to the store at once, so the acknowledgement can
-  // open the window again without the host having to ask.
-  if (buffer_.size() + ahead_.size() >= config_.buffer_rows) flush_buffer();
+  // open the window again without the host having to ask. After a power
+  // cut lost the buffer, every row goes to the store before its
+  // acknowledgement.
+  if (write_through_ || buffer_.size() + ahead_.size() >= config_.buffer_rows) flush_buffer();
 }
 
 void DeviceEngine::flush_buffer() {
@@ -375,43 +550,41 @@ void DeviceEngine::flush_buffer() {
   save();
 }
 
-void DeviceEngine::verify_complete_job() {
+void DeviceEngine::start_check() {
   const std::filesystem::path target = config_.store / manifest_.name;
-  const bool spooled = std::filesystem::exists(part_path());
-  const Bytes bytes = read_all(spooled ? part_path() : target);
-  if (bytes.size() != manifest_.size) {
-    refuse("received " + std::to_string(bytes.size()) + " bytes, the manifest says " +
-           std::to_string(manifest_.size));
+  const std::filesystem::path file = std::filesystem::exists(part_path()) ? part_path() : target;
+  if (manifest_.size <= config_.background_check_bytes) {
+    std::promise<std::string> done;
+    done.set_value(check_job(file, manifest_, config_.checkers));
+    check_ = done.get_future();
     return;
   }
-  if (sha256(bytes) != manifest_.sha256) {
-    refuse("SHA-256 of the received bytes " + to_hex(sha256(bytes)) +
-           " differs from the manifest's " + to_hex(manifest_.sha256));
+  event("job " + manifest_.name + ": all " + std::to_string(manifest_.rows) +
+        " rows arrived; checking it");
+  check_ =
+      std::async(std::launch::async, [file, manifest = manifest_, checkers = config_.checkers] {
+        return check_job(file, manifest, checkers);
+      });
+}
+
+void DeviceEngine::finish_check() {
+  if (!check_.valid() || check_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
     return;
   }
-  auto rows = split_rows(manifest_.format, bytes);
-  if (!rows) {
-    refuse(rows.error().message);
+  std::string reason = check_.get();
+  if (!reason.empty()) {
+    refuse(std::move(reason));
     return;
   }
-  if (rows.value().size() - 1 != manifest_.rows) {
-    refuse("the job has " + std::to_string(rows.value().size() - 1) + " rows, the manifest says " +
-           std::to_string(manifest_.rows));
-    return;
-  }
-  const auto& check =
-      manifest_.format == JobFormat::Dat ? config_.checkers.dat : config_.checkers.knitout;
-  if (check) {
-    std::string reason = check(manifest_.name, bytes);
-    if (!reason.empty()) {
-      refuse(std::move(reason));
-      return;
-    }
-  }
-  if (spooled) {
+  store_job();
+}
+
+void DeviceEngine::store_job() {
+  const std::filesystem::path target = config_.store / manifest_.name;
+  if (std::filesystem::exists(part_path())) {
     std::error_code ec;
     std::filesystem::rename(part_path(), target, ec);
-    if (ec) throw std::runtime_error("mock device: cannot store " + target.string());
+    if (ec) throw std::runtime_error("cannot store " + target.string() + ": " + ec.message());
     if (config_.sync) {
       const int dir = ::open(config_.store.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
       if (dir >= 0) {
@@ -427,8 +600,7 @@ void DeviceEngine::verify_complete_job() {
   m["rows"] = manifest_.rows;
   m["sha256"] = to_hex(manifest_.sha256);
   m["job_id"] = job_id_;
-  write_atomically(config_.store / (manifest_.name + ".manifest.json"), m.dump(2) + "\n",
-                   config_.sync);
+  write_atomically(config_.store / (manifest_.name + ".manifest.json"), json_text(m), config_.sync);
   state_ = JobState::Knitting;
   knit_origin_s_ = -1;
   save();
@@ -492,11 +664,12 @@ void DeviceEngine::knit(double now_s) {
   }
 }
 
-void DeviceEngine::tick(double now_s) {
+void DeviceEngine::advance(double now_s) {
   if (state_ != JobState::Receiving && state_ != JobState::Knitting) return;
   if (state_ == JobState::Receiving) {
     flush_buffer();
-    if (received_ == manifest_.rows) verify_complete_job();
+    if (received_ == manifest_.rows && !check_.valid()) start_check();
+    finish_check();
   }
   knit(now_s);
 }

@@ -8,10 +8,16 @@
 //   .wearknit-device/state.json       counters (written atomically: temp + rename)
 //   .wearknit-device/job-ID.part      the rows received so far, in order
 //   .wearknit-device/job-ID.knitlog   one line per knitted row: its index
+//   .wearknit-device/quarantine/      what a start could not take up (an
+//                                     unreadable state, a job an earlier
+//                                     version accepted under a bad name)
 // Rows pass through a RAM buffer of `buffer_rows` rows on their way to the
 // spool (moved on every tick, and at once when full); rows that arrive past a
 // gap wait there for the missing one. A reboot loses the buffer and nothing
-// else. Acknowledgements announce the buffer's free room: the host's window. A job is knitted only
+// else; a device that comes up with a job still arriving stores every row
+// before acknowledging it for the rest of that job, so frequent power cuts
+// cannot keep a job from arriving. Acknowledgements announce the buffer's
+// free room: the host's window. A job is knitted only
 // after all of it arrived and its size, SHA-256, row count and the format's
 // checker agreed; knitting then advances at `rows_per_s` and the knit log is
 // the knitted counter, so a row is never knitted twice across restarts.
@@ -21,6 +27,7 @@
 #include <deque>
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <map>
 #include <string>
 #include <vector>
@@ -43,6 +50,12 @@ struct DeviceConfig {
   std::uint32_t stop_at_row = 0;
   // Receives one line per event worth telling the operator.
   std::function<void(const std::string&)> on_event;
+  // Jobs larger than this are refused at their manifest (J008), as are jobs
+  // larger than the store's free space.
+  std::uint64_t max_job_bytes = std::uint64_t{1} << 32;
+  // Complete jobs larger than this are checked on a worker thread, so the
+  // device answers keep-alives while it checks; smaller ones at once.
+  std::uint64_t background_check_bytes = std::uint64_t{1} << 20;
 };
 
 class DeviceEngine {
@@ -71,7 +84,20 @@ class DeviceEngine {
 
  private:
   explicit DeviceEngine(DeviceConfig config) : config_(std::move(config)) {}
+  DeviceEngine(const DeviceEngine&) = delete;
+  DeviceEngine& operator=(const DeviceEngine&) = delete;
+
+ public:
+  ~DeviceEngine();
+
+ private:
   Outcome load();
+  void reset_state();
+  void quarantine_job(const std::string& why);
+  void remove_stale_temporaries();
+  void handle_frame(const Frame& frame, double now_s, std::vector<Frame>& replies);
+  void advance(double now_s);
+  void refuse_for_store_failure(const std::exception& failure);
   void save();
   void event(const std::string& text) const;
   std::uint32_t accepted() const { return received_ + static_cast<std::uint32_t>(buffer_.size()); }
@@ -79,7 +105,9 @@ class DeviceEngine {
   void clear_buffers();
   std::uint32_t free_rows() const;
   void take_row(std::uint32_t row, const Bytes& payload);
-  void verify_complete_job();
+  void start_check();
+  void finish_check();
+  void store_job();
   void knit(double now_s);
   void refuse(std::string reason);
   std::filesystem::path state_dir() const { return config_.store / ".wearknit-device"; }
@@ -107,6 +135,10 @@ class DeviceEngine {
   std::uint64_t ahead_bytes_ = 0;
   double knit_origin_s_ = -1;
   std::uint32_t knit_origin_rows_ = 0;
+  // Set when the device came up with a job still arriving: its RAM buffer
+  // was lost once, so every row is stored before it is acknowledged.
+  bool write_through_ = false;
+  std::future<std::string> check_;  // the running check of a complete job
 };
 
 }  // namespace devices

@@ -144,6 +144,10 @@ void HostSession::fill_window(double now_s) {
 
 void HostSession::on_frame(const Frame& frame, double now_s) {
   if (finished()) return;
+  if (job_id_ != 0 && frame.job_id == job_id_ &&
+      (frame.type == FrameType::Ack || frame.type == FrameType::Status)) {
+    device_has_job_ = true;
+  }
   if (frame.type == FrameType::Ack) {
     AckMessage ack;
     if (!decode(frame.payload, ack)) return;
@@ -187,6 +191,7 @@ void HostSession::apply_counters(JobState state, std::uint32_t received, std::ui
     }
   } else if (received < base_) {
     // The device lost rows it had accepted (a power cycle): resend from its count.
+    ++progress_.buffer_losses;
     base_ = next_ = received;
     last_advance_s_ = now_s;
     recovering_ = false;
@@ -211,10 +216,21 @@ void HostSession::apply_state(const StatusMessage& status, double now_s) {
   progress_.device_state = status.state;
   progress_.alarm = status.alarm;
   progress_.rows_knitted = status.rows_knitted;
+  progress_.rows_durable = status.rows_durable;
+  if (job_unfinished(status.state) || status.state == JobState::Done) {
+    progress_.job_accepted = true;
+  }
   const std::string where = " after " + std::to_string(status.rows_knitted) + " of " +
                             std::to_string(status.rows_total) + " rows";
   switch (status.state) {
     case JobState::Receiving:
+      if (status.rows_received < base_) ++progress_.buffer_losses;
+      if (status.rows_received >= job_.row_count()) {
+        // Every row is there and the device checks the job: wait for it.
+        phase_ = Phase::Knitting;
+        progress_.rows_received = status.rows_received;
+        return;
+      }
       phase_ = Phase::Transfer;
       base_ = next_ = status.rows_received;
       limit_ = status.rows_received + status.buffer_free;
@@ -292,6 +308,9 @@ void HostSession::on_status(const Frame& frame, const StatusMessage& status, dou
     send_request(FrameType::Manifest, encode(job_.manifest()), now_s);
     return;
   }
+  if (frame.job_id == job_id_ && job_id_ != 0 && status.state == JobState::Receiving) {
+    progress_.rows_durable = status.rows_durable;
+  }
   if (phase_ == Phase::Transfer && frame.job_id == job_id_ && status.state == JobState::Receiving) {
     // A window probe's answer: rows may still be in flight, keep them.
     apply_counters(status.state, status.rows_received, status.rows_knitted, status.buffer_free,
@@ -299,7 +318,12 @@ void HostSession::on_status(const Frame& frame, const StatusMessage& status, dou
     return;
   }
   if (frame.job_id != job_id_) {
-    if (phase_ == Phase::Manifest && job_unfinished(status.state)) {
+    if (!device_has_job_ && !job_unfinished(status.state)) {
+      // The manifest was lost with the link before the device answered it:
+      // the device never had this job, so it is announced again.
+      phase_ = Phase::Manifest;
+      send_request(FrameType::Manifest, encode(job_.manifest()), now_s);
+    } else if (phase_ == Phase::Manifest && job_unfinished(status.state)) {
       fail("the device took another job ('" + status.name + "') before this one");
     } else if (phase_ == Phase::Manifest) {
       send_request(FrameType::Manifest, encode(job_.manifest()), now_s);

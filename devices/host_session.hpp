@@ -40,6 +40,12 @@ struct Progress {
   std::uint32_t rows_total = 0;
   std::uint32_t rows_received = 0;  // acknowledged by the device
   std::uint32_t rows_knitted = 0;
+  // Rows the device holds in its store (its last STATUS): a power cycle
+  // keeps these, while the rest of rows_received may be lost.
+  std::uint32_t rows_durable = 0;
+  // Times the device's count of received rows fell: it lost its buffer.
+  std::uint32_t buffer_losses = 0;
+  bool job_accepted = false;  // the device took this job's manifest
   std::uint64_t frames_sent = 0;
   std::uint64_t rows_sent = 0;  // including retransmissions
   std::uint64_t bytes_sent = 0;
@@ -82,6 +88,7 @@ class HostSession {
   SendOptions options_;
   std::uint32_t new_job_id_;
   std::uint32_t job_id_ = 0;
+  bool device_has_job_ = false;  // the device has answered about job_id_
   Phase phase_ = Phase::Handshake;
   std::string message_;
   bool wants_reconnect_ = false;

@@ -135,6 +135,7 @@ Bytes encode(const StatusMessage& m) {
   w.raw(m.sha256);
   w.str(m.name);
   w.str(m.reason.size() > 1000 ? m.reason.substr(0, 1000) : m.reason);
+  w.u32(m.rows_durable);
   return w.take();
 }
 
@@ -154,6 +155,7 @@ bool decode(std::span<const std::uint8_t> payload, StatusMessage& m) {
   r.raw(m.sha256);
   m.name = r.str();
   m.reason = r.str();
+  m.rows_durable = r.u32();
   return !r.failed() && r.at_end() && static_cast<int>(m.state) <= 7 &&
          static_cast<int>(m.alarm) <= 2;
 }

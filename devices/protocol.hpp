@@ -79,6 +79,9 @@ struct StatusMessage {
   Sha256 sha256{};
   std::string name;
   std::string reason;  // why Refused (or other detail); empty otherwise
+  // Rows stored in the device's spool, which a power cycle keeps; the rest
+  // of rows_received is in its RAM buffer.
+  std::uint32_t rows_durable = 0;
 };
 
 struct CommandMessage {

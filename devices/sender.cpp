@@ -1,6 +1,9 @@
 #include "devices/sender.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cstring>
 #include <random>
 #include <thread>
 
@@ -24,6 +27,76 @@ Result<std::unique_ptr<Transport>> open_stream(const DeviceUri& uri, const LinkO
   return open_transport(uri);
 }
 
+// Tells a peer that speaks another protocol from a wearknit device on the
+// first bytes it sends before any valid frame: text protocols greet or
+// answer with a recognisable line, and none of them frames with SLIP.
+class PeerCheck {
+ public:
+  void reset() {
+    first_.clear();
+    framed_ = false;
+  }
+  void frame_seen() { framed_ = true; }
+  // Bytes as they arrive; returns what the peer looks like ("an HTTP
+  // server"), or an empty string while it may still be a device.
+  std::string feed(std::span<const std::uint8_t> bytes) {
+    if (framed_ || first_.size() >= kKeep) return {};
+    first_.insert(
+        first_.end(), bytes.begin(),
+        bytes.begin() + static_cast<std::ptrdiff_t>(std::min(bytes.size(), kKeep - first_.size())));
+    const std::string text(first_.begin(), first_.end());
+    const auto starts = [&](std::string_view prefix) { return text.rfind(prefix, 0) == 0; };
+    if (first_.empty() || first_[0] == 0xC0) return {};
+    if (starts("HTTP/")) return "an HTTP server";
+    if (starts("SSH-")) return "an SSH server";
+    if (starts("220 ") || starts("220-")) return "an FTP or mail server";
+    if (starts("+OK") || starts("-ERR")) return "a POP3 or Redis server";
+    if (starts("* OK")) return "an IMAP server";
+    if (starts("RFB ")) return "a VNC server";
+    if (first_.size() >= 2 && first_[0] == 0x16 && first_[1] == 0x03) return "a TLS server";
+    if (first_.size() >= 2 && first_[0] == 0x15 && first_[1] == 0x03) return "a TLS server";
+    // Any other text with no frame delimiter in its first 64 bytes.
+    if (first_.size() >= 64) {
+      const bool printable = std::all_of(first_.begin(), first_.end(), [](std::uint8_t c) {
+        return c == '\r' || c == '\n' || c == '\t' || (c >= 0x20 && c < 0x7F);
+      });
+      if (printable) return "a text protocol";
+    }
+    return {};
+  }
+  // The first line the peer sent, shortened, for the message.
+  std::string first_line() const {
+    std::string line;
+    for (std::uint8_t c : first_) {
+      if (c == '\r' || c == '\n' || line.size() >= 60) break;
+      line.push_back(c >= 0x20 && c < 0x7F ? static_cast<char>(c) : '?');
+    }
+    return line;
+  }
+
+ private:
+  static constexpr std::size_t kKeep = 64;
+  std::vector<std::uint8_t> first_;
+  bool framed_ = false;
+};
+
+Error foreign_peer(const DeviceUri& uri, const std::string& kind, const PeerCheck& check) {
+  return make_error(ErrorClass::Protocol, "[J010] " + uri.text +
+                                              " is not a wearknit device: it answered like " +
+                                              kind + " (\"" + check.first_line() + "\")");
+}
+
+// The path quoted for a shell when it holds anything but plain characters.
+std::string shell_word(const std::string& text) {
+  const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("/._-+:@%,=", c) != nullptr;
+  });
+  if (plain) return text;
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
 Outcome write_frames(Transport& transport, std::vector<Frame> frames, int timeout_ms) {
   if (frames.empty()) return Ok{};
   Bytes wire;
@@ -44,6 +117,7 @@ Result<DeviceStatus> exchange(
   auto transport = open_stream(uri, link);
   if (!transport) return transport.error();
   SlipDecoder decoder;
+  PeerCheck peer;
   std::uint8_t buffer[4096];
   std::uint32_t seq = 0;
   DeviceStatus last;
@@ -59,9 +133,13 @@ Result<DeviceStatus> exchange(
     while (!answered && seconds_now() < deadline) {
       auto n = transport.value()->read_some(buffer, 50);
       if (!n) return n.error();
+      if (const std::string kind = peer.feed(std::span(buffer, n.value())); !kind.empty()) {
+        return foreign_peer(uri, kind, peer);
+      }
       decoder.feed(std::span(buffer, n.value()), [&](std::span<const std::uint8_t> raw) {
         Frame reply;
         StatusMessage status;
+        if (decode_frame(raw, reply)) peer.frame_seen();
         if (decode_frame(raw, reply) && reply.type == FrameType::Status && reply.seq == seq &&
             decode(reply.payload, status)) {
           last = DeviceStatus{reply.job_id, status};
@@ -90,9 +168,26 @@ Result<SendReport> send_job(const DeviceUri& uri, const Job& job, const SendOpti
   int connections = 0;
   std::string last_problem;
   SlipDecoder decoder;
+  PeerCheck peer;
   std::vector<std::uint8_t> buffer(65536);
   const auto note = [&](const std::string& text) {
     if (on_progress) on_progress(session.progress(), text);
+  };
+  // What lasts: rows in the device's store, rows knitted, the job accepted
+  // and verified. An attempt that moved none of them is a failed attempt.
+  std::uint32_t best_durable = 0;
+  std::uint32_t best_knitted = 0;
+  bool accepted = false;
+  bool verified = false;
+  const auto lasting_progress = [&](const Progress& p) {
+    const bool now_verified = p.phase == Phase::Knitting && p.device_state != JobState::Receiving;
+    const bool moved = p.rows_durable > best_durable || p.rows_knitted > best_knitted ||
+                       (p.job_accepted && !accepted) || (now_verified && !verified);
+    best_durable = std::max(best_durable, p.rows_durable);
+    best_knitted = std::max(best_knitted, p.rows_knitted);
+    accepted = accepted || p.job_accepted;
+    verified = verified || now_verified;
+    return moved;
   };
   for (;;) {
     auto opened = open_stream(uri, link);
@@ -106,8 +201,8 @@ Result<SendReport> send_job(const DeviceUri& uri, const Job& job, const SendOpti
       Transport& transport = *opened.value();
       if (connections++ > 0) note("reconnected to " + uri.text);
       decoder.reset();
+      peer.reset();
       session.on_connect(seconds_now());
-      Progress before = session.progress();
       for (;;) {
         if (Outcome w = write_frames(transport, session.take_outbox(), link.write_timeout_ms); !w) {
           last_problem = w.error().text();
@@ -129,23 +224,24 @@ Result<SendReport> send_job(const DeviceUri& uri, const Job& job, const SendOpti
           last_problem = n.error().text();
           break;
         }
-        decoder.feed(std::span(buffer.data(), n.value()), [&](std::span<const std::uint8_t> raw) {
+        const std::span<const std::uint8_t> got(buffer.data(), n.value());
+        if (const std::string kind = peer.feed(got); !kind.empty()) {
+          return foreign_peer(uri, kind, peer);
+        }
+        decoder.feed(got, [&](std::span<const std::uint8_t> raw) {
           Frame frame;
           if (!decode_frame(raw, frame)) {
             debug_line("host: dropped a frame that failed its check");
             return;
           }
+          peer.frame_seen();
           if (debug_enabled()) debug_line("host <- " + describe(frame));
           session.on_frame(frame, seconds_now());
         });
         session.poll(seconds_now());
         const Progress now = session.progress();
-        if (now.rows_received > before.rows_received || now.rows_knitted > before.rows_knitted ||
-            now.phase != before.phase) {
-          failed_attempts = 0;
-        }
+        if (lasting_progress(now)) failed_attempts = 0;
         if (on_progress) on_progress(now, "");
-        before = now;
         if (session.wants_reconnect()) {
           last_problem = "no answer from the device for " +
                          std::to_string(static_cast<int>(options.silence_s)) + " s";
@@ -155,14 +251,23 @@ Result<SendReport> send_job(const DeviceUri& uri, const Job& job, const SendOpti
     }
     if (++failed_attempts > link.max_attempts) {
       const Progress p = session.progress();
-      return make_error(ErrorClass::Disconnected,
-                        "gave up on " + uri.text + " after " + std::to_string(link.max_attempts) +
-                            " attempts in a row (" + last_problem + "); " +
-                            std::to_string(p.rows_received) + " of " +
-                            std::to_string(p.rows_total) + " rows were acknowledged and " +
-                            std::to_string(p.rows_knitted) +
-                            " knitted. The device keeps its counters: run `wearknit send " +
-                            job.name + " --to " + uri.text + " --resume` to finish the job");
+      std::string message =
+          "gave up on " + uri.text + " after " + std::to_string(link.max_attempts) +
+          " attempts in a row that moved the job no further (" + last_problem + "); ";
+      if (!accepted) {
+        message += "nothing of the job reached the device";
+        return make_error(ErrorClass::Disconnected, message);
+      }
+      message += std::to_string(best_durable) + " of " + std::to_string(p.rows_total) +
+                 " rows are stored on the device and " + std::to_string(best_knitted) + " knitted";
+      if (p.buffer_losses > 0) {
+        message += "; the device lost the rows it had buffered " + std::to_string(p.buffer_losses) +
+                   " times (is it restarting?)";
+      }
+      message += ". The device keeps its counters: run `wearknit send " +
+                 shell_word(link.job_path.empty() ? job.name : link.job_path) + " --to " +
+                 shell_word(uri.text) + " --resume` to finish the job";
+      return make_error(ErrorClass::Disconnected, message);
     }
     const double backoff = std::min(link.first_backoff_s * (1 << std::min(failed_attempts - 1, 10)),
                                     link.max_backoff_s);

@@ -61,6 +61,7 @@ int send_file(const std::string& job_path, const std::string& to, const SendFile
   devices::LinkOptions link;
   link.max_attempts = std::max(options.attempts, 0);
   link.loopback_checkers = project_job_checkers();
+  link.job_path = job_path;
   ProgressPrinter printer(context, options.quiet, to);
   auto report = devices::send_job(
       uri.value(), job.value(), send_options, link,

@@ -141,7 +141,7 @@ TEST_F(DeviceEngineTest, RefusesAJobWhoseBytesDoNotMatchTheManifest) {
     e->tick(now_);
   }
   EXPECT_EQ(e->state(), JobState::Refused);
-  EXPECT_EQ(e->status().reason.rfind("SHA-256 of the received bytes ", 0), 0u);
+  EXPECT_EQ(e->status().reason.rfind("[J005] SHA-256 of the received bytes ", 0), 0u);
   EXPECT_FALSE(std::filesystem::exists(store_ / "s.k"));
   EXPECT_EQ(e->rows_knitted(), 0u);
 }
@@ -173,7 +173,8 @@ TEST_F(DeviceEngineTest, RefusesUnsafeNames) {
   m.name = "../escape.k";
   const StatusMessage s = status_of(call(*e, FrameType::Manifest, 3, 1, encode(m))[0]);
   EXPECT_EQ(s.state, JobState::Refused);
-  EXPECT_EQ(s.reason, "'../escape.k' is not a plain file name");
+  EXPECT_EQ(s.reason,
+            "[J001] the job name '../escape.k' names a folder; a plain file name is needed");
 }
 
 TEST_F(DeviceEngineTest, CountersSurviveARestartAndTheBufferDoesNot) {
