@@ -255,7 +255,9 @@ Result<SendReport> send_job(const DeviceUri& uri, const Job& job, const SendOpti
           "gave up on " + uri.text + " after " + std::to_string(link.max_attempts) +
           " attempts in a row that moved the job no further (" + last_problem + "); ";
       if (!accepted) {
-        message += "nothing of the job reached the device";
+        message += connections == 0 ? "nothing of the job reached the device"
+                                    : "the device never acknowledged the job (send it again; "
+                                      "if the device says it holds it, add --resume)";
         return make_error(ErrorClass::Disconnected, message);
       }
       message += std::to_string(best_durable) + " of " + std::to_string(p.rows_total) +

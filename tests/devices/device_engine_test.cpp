@@ -2,6 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+#include "backends/dat/format.hpp"
+#include "devices/hash.hpp"
+#include "devices/job.hpp"
 #include "tests/devices/device_test_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -175,6 +182,155 @@ TEST_F(DeviceEngineTest, RefusesUnsafeNames) {
   EXPECT_EQ(s.state, JobState::Refused);
   EXPECT_EQ(s.reason,
             "[J001] the job name '../escape.k' names a folder; a plain file name is needed");
+}
+
+// The name rule (docs/protocol.md §7), at the device: every name a hostile
+// client may send is refused with J001 before anything touches the disk,
+// and the device takes the next job.
+TEST_F(DeviceEngineTest, HostileNamesAreRefusedBeforeTheDiskAndTheDeviceKeepsServing) {
+  auto e = open();
+  const std::vector<std::string> names = {
+      std::string(240, 'a') + ".k",  // its manifest's temporary name is too long
+      std::string(201, 'b'),         // just over the limit
+      std::string("\xff\xfe.k"),     // not UTF-8
+      std::string("ok\xc3.k"),       // a cut sequence
+      "X.k.manifest.json",           // would overwrite job X.k's manifest
+      "X.K.MANIFEST.JSON",
+      "job.part",
+      "job.k.knitlog",
+      ".hidden.k",
+      "a.k.tmp-123456",
+      "tab\tname.k",
+      "con:.k",
+      "trailing.k ",
+      ""};
+  std::uint32_t id = 40;
+  for (const std::string& name : names) {
+    ManifestMessage m = test::make_sheet_job("s.k", 2, 2).manifest();
+    m.name = name;
+    const StatusMessage s = status_of(call(*e, FrameType::Manifest, ++id, 1, encode(m))[0]);
+    EXPECT_EQ(s.state, JobState::Refused) << printable_name(name);
+    EXPECT_EQ(s.reason.rfind("[J001] ", 0), 0u) << s.reason;
+  }
+  // Nothing but the device's own folder was created.
+  for (const auto& entry : std::filesystem::directory_iterator(store_)) {
+    EXPECT_EQ(entry.path().filename(), ".wearknit-device") << entry.path();
+  }
+  // A refused name survives a restart as printable text, and the device
+  // takes the next job.
+  e.reset();
+  e = open();
+  const Job job = test::make_sheet_job("s.k", 3, 3);
+  send_all(*e, job, 77);
+  e->tick(now_);
+  EXPECT_EQ(e->state(), JobState::Done);
+}
+
+TEST_F(DeviceEngineTest, AnUnreadableStateIsSetAsideAndTheDeviceStartsIdle) {
+  std::filesystem::create_directories(store_ / ".wearknit-device");
+  wearknit::test::write_file(store_ / ".wearknit-device" / "state.json", "{\"job_id\": 3, garbage");
+  wearknit::test::write_file(store_ / "old.k.manifest.json.tmp-ab12cd", "half");
+  wearknit::test::write_file(store_ / ".wearknit-device" / "state.json.tmp-99", "half");
+  auto e = open();
+  EXPECT_EQ(e->state(), JobState::Idle);
+  EXPECT_FALSE(std::filesystem::exists(store_ / ".wearknit-device" / "state.json"));
+  EXPECT_FALSE(std::filesystem::exists(store_ / "old.k.manifest.json.tmp-ab12cd"));
+  EXPECT_FALSE(std::filesystem::exists(store_ / ".wearknit-device" / "state.json.tmp-99"));
+  int kept = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(store_ / ".wearknit-device" / "quarantine")) {
+    EXPECT_EQ(wearknit::test::read_file(entry.path()), "{\"job_id\": 3, garbage");
+    ++kept;
+  }
+  EXPECT_EQ(kept, 1);
+  const auto said = [&](const std::string& text) {
+    return std::any_of(events_.begin(), events_.end(), [&](const std::string& line) {
+      return line.find(text) != std::string::npos;
+    });
+  };
+  EXPECT_TRUE(said("unreadable device state"));
+  EXPECT_TRUE(said("removed the temporary file"));
+  const Job job = test::make_sheet_job("s.k", 3, 3);
+  send_all(*e, job, 5);
+  e->tick(now_);
+  EXPECT_EQ(e->state(), JobState::Done);
+}
+
+// A store written by an earlier version that took a 240-byte name: the
+// unfinished job is refused and its files quarantined on every start, never
+// a crash loop.
+TEST_F(DeviceEngineTest, AnUnfinishedJobWithANameTheRuleRefusesIsQuarantined) {
+  const std::string name(240, 'n');
+  {
+    auto e = open();
+    const Job job = test::make_sheet_job("s.k", 3, 6);
+    call(*e, FrameType::Manifest, 9, 1, encode(job.manifest()));
+    for (std::uint32_t r = 0; r < 3; ++r) {
+      call(*e, FrameType::Row, 9, r, Bytes(job.row(r).begin(), job.row(r).end()));
+    }
+    ASSERT_EQ(e->state(), JobState::Receiving);
+  }
+  const auto state = store_ / ".wearknit-device" / "state.json";
+  std::string text = wearknit::test::read_file(state);
+  const auto at = text.find("\"s.k\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 5, "\"" + name + "\"");
+  wearknit::test::write_file(state, text);
+  for (int start = 0; start < 2; ++start) {
+    auto e = open();
+    EXPECT_EQ(e->state(), JobState::Refused);
+    EXPECT_EQ(e->status().reason.rfind("[J009] refused on start: [J001] ", 0), 0u)
+        << e->status().reason;
+  }
+  EXPECT_TRUE(std::filesystem::exists(store_ / ".wearknit-device" / "quarantine" / "job-9"));
+  EXPECT_FALSE(std::filesystem::exists(store_ / ".wearknit-device" / "job-9.part"));
+  auto e = open();
+  const Job next = test::make_sheet_job("t.k", 3, 3);
+  send_all(*e, next, 10);
+  e->tick(now_);
+  EXPECT_EQ(e->state(), JobState::Done);
+}
+
+// A DAT whose runs fill a 65536 x 65536 raster (34 MB for 4 GiB of pixels)
+// is refused by the device's check from its declared size, in the job's
+// own bytes and no more.
+TEST_F(DeviceEngineTest, ADatBombIsRefusedByItsDeclaredSize) {
+  Bytes bomb = dat::file_prefix(65536, 65536);
+  Bytes row;
+  for (int i = 0; i < 65536 / 255; ++i) row.insert(row.end(), {1, 255});
+  row.insert(row.end(), {1, static_cast<std::uint8_t>(65536 % 255)});
+  for (int y = 0; y < 65536; ++y) bomb.insert(bomb.end(), row.begin(), row.end());
+  DeviceConfig config;
+  config.store = store_;
+  config.sync = false;
+  config.buffer_rows = 64;
+  config.checkers = test::test_checkers();
+  auto opened = DeviceEngine::open(config);
+  ASSERT_TRUE(opened.ok());
+  DeviceEngine& e = *opened.value();
+  // A hostile host cuts the bytes as it likes; the device cuts them again.
+  constexpr std::size_t kChunk = 32768;
+  ManifestMessage m;
+  m.format = JobFormat::Dat;
+  m.size = bomb.size();
+  m.rows = static_cast<std::uint32_t>((bomb.size() + kChunk - 1) / kChunk);
+  m.sha256 = sha256(bomb);
+  m.name = "bomb.dat";
+  call(e, FrameType::Manifest, 3, 1, encode(m));
+  for (std::uint32_t r = 0; r < m.rows; ++r) {
+    const std::size_t from = r * kChunk;
+    call(e, FrameType::Row, 3, r,
+         Bytes(bomb.begin() + static_cast<std::ptrdiff_t>(from),
+               bomb.begin() + static_cast<std::ptrdiff_t>(std::min(bomb.size(), from + kChunk))));
+  }
+  for (int i = 0; i < 200 && e.state() == JobState::Receiving; ++i) {
+    e.tick(now_);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(e.state(), JobState::Refused);
+  EXPECT_NE(e.status().reason.find("[D047] DAT raster too large"), std::string::npos)
+      << e.status().reason;
+  EXPECT_FALSE(std::filesystem::exists(store_ / "bomb.dat"));
 }
 
 TEST_F(DeviceEngineTest, CountersSurviveARestartAndTheBufferDoesNot) {

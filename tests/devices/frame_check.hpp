@@ -19,6 +19,7 @@
 
 #include "devices/framing.hpp"
 #include "devices/hash.hpp"
+#include "devices/job.hpp"
 #include "devices/protocol.hpp"
 
 namespace devices {
@@ -54,8 +55,21 @@ inline std::string check_frame(std::span<const std::uint8_t> bytes) {
   switch (frame.type) {
     case FrameType::Hello:
       return check_message<HelloMessage>(frame.payload, "HELLO");
-    case FrameType::Manifest:
+    case FrameType::Manifest: {
+      // Whatever name a manifest carries, the name rule answers without
+      // throwing, and the name as printed is plain printable ASCII.
+      ManifestMessage manifest;
+      if (decode(frame.payload, manifest)) {
+        const std::string problem = job_name_problem(manifest.name);
+        if (problem.empty() != valid_job_name(manifest.name)) {
+          return "job_name_problem and valid_job_name disagree";
+        }
+        for (const char c : printable_name(manifest.name)) {
+          if (c < 0x20 || c > 0x7e) return "a printable name with a byte that is not printable";
+        }
+      }
       return check_message<ManifestMessage>(frame.payload, "MANIFEST");
+    }
     case FrameType::Command:
       return check_message<CommandMessage>(frame.payload, "COMMAND");
     case FrameType::Status: {

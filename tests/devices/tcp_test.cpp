@@ -117,7 +117,9 @@ TEST_F(TcpTest, GivesUpWithAClearMessageAndResumeFinishesWithoutKnittingTwice) {
       std::this_thread::sleep_for(std::chrono::milliseconds(300));
       server.stop();
     });
-    auto report = send_job(uri, job, fast_send(), fast_link(3), nullptr);
+    LinkOptions link = fast_link(3);
+    link.job_path = "/jobs/spring line/resume.k";  // the path the user gave
+    auto report = send_job(uri, job, fast_send(), link, nullptr);
     stopper.join();
     ASSERT_FALSE(report.ok());
     EXPECT_EQ(report.error().error_class, ErrorClass::Disconnected);
@@ -130,9 +132,11 @@ TEST_F(TcpTest, GivesUpWithAClearMessageAndResumeFinishesWithoutKnittingTwice) {
     // Every row is stored (the check ran) and some are knitted: the message
     // says so before its hint.
     EXPECT_NE(m.find("62 of 62 rows are stored on the device and "), std::string::npos) << m;
-    EXPECT_NE(m.find("The device keeps its counters: run `wearknit send resume.k --to " +
-                     server.uri() + " --resume` to finish the job"),
-              std::string::npos)
+    EXPECT_NE(
+        m.find(
+            "The device keeps its counters: run `wearknit send '/jobs/spring line/resume.k' --to " +
+            server.uri() + " --resume` to finish the job"),
+        std::string::npos)
         << m;
     auto engine = open_store();
     knitted_before = engine.value()->rows_knitted();
