@@ -6,7 +6,6 @@
 #include <chrono>
 #include <thread>
 
-#include "backends/dat/format.hpp"
 #include "devices/hash.hpp"
 #include "devices/job.hpp"
 #include "tests/devices/device_test_support.hpp"
@@ -295,11 +294,7 @@ TEST_F(DeviceEngineTest, AnUnfinishedJobWithANameTheRuleRefusesIsQuarantined) {
 // is refused by the device's check from its declared size, in the job's
 // own bytes and no more.
 TEST_F(DeviceEngineTest, ADatBombIsRefusedByItsDeclaredSize) {
-  Bytes bomb = dat::file_prefix(65536, 65536);
-  Bytes row;
-  for (int i = 0; i < 65536 / 255; ++i) row.insert(row.end(), {1, 255});
-  row.insert(row.end(), {1, static_cast<std::uint8_t>(65536 % 255)});
-  for (int y = 0; y < 65536; ++y) bomb.insert(bomb.end(), row.begin(), row.end());
+  const Bytes bomb = test::make_dat_bomb();
   DeviceConfig config;
   config.store = store_;
   config.sync = false;

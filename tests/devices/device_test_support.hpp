@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "backends/dat/format.hpp"
 #include "devices/device_engine.hpp"
 #include "devices/job.hpp"
 
@@ -41,6 +42,18 @@ inline JobCheckers test_checkers() {
   JobCheckers c;
   c.knitout = check_knitout_syntax;
   return c;
+}
+
+// The DAT bomb: 34 MB of valid runs that fill a 65536 x 65536 raster
+// (4 GiB of pixels once decoded).
+inline Bytes make_dat_bomb() {
+  Bytes bomb = dat::file_prefix(65536, 65536);
+  Bytes row;
+  for (int i = 0; i < 65536 / 255; ++i) row.insert(row.end(), {1, 255});
+  row.insert(row.end(), {1, static_cast<std::uint8_t>(65536 % 255)});
+  bomb.reserve(bomb.size() + row.size() * 65536);
+  for (int y = 0; y < 65536; ++y) bomb.insert(bomb.end(), row.begin(), row.end());
+  return bomb;
 }
 
 inline std::string read_text(const std::filesystem::path& path) {

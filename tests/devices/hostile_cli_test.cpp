@@ -11,7 +11,6 @@
 #include <cstdlib>
 #include <thread>
 
-#include "backends/dat/format.hpp"
 #include "devices/framing.hpp"
 #include "devices/protocol.hpp"
 #include "devices/transport.hpp"
@@ -180,11 +179,7 @@ TEST_F(HostileCliTest, ADeviceThatRebootsOnEveryFrameIsGivenUpWithinTheAttempts)
 }
 
 TEST_F(HostileCliTest, ADatBombIsRefusedByItsDeclaredSizeEverywhere) {
-  Bytes bomb = dat::file_prefix(65536, 65536);
-  Bytes row;
-  for (int i = 0; i < 65536 / 255; ++i) row.insert(row.end(), {1, 255});
-  row.insert(row.end(), {1, static_cast<std::uint8_t>(65536 % 255)});
-  for (int y = 0; y < 65536; ++y) bomb.insert(bomb.end(), row.begin(), row.end());
+  const Bytes bomb = test::make_dat_bomb();
   wearknit::test::write_file(dir_ / "bomb.dat", std::string(bomb.begin(), bomb.end()));
   const auto info = run_wearknit("dat-info " + path("bomb.dat"));
   EXPECT_EQ(info.exit_code, 1);
