@@ -268,6 +268,14 @@ TEST(DatPassesTest, KeepPositionMustFitTheBed) {
             "t.k:5: error: [D028] Position Keep: needle slots 0..0 lie outside the bed 1..540");
 }
 
+// D030 names the first pass that makes the raster too large for a DAT.
+TEST(DatPassesTest, ARasterTooLargeNamesTheFirstPassBeyondTheLimit) {
+  Result r;
+  run("in 3\nknit + f1 3\nknit - f1 3\nknit + f70000 3\nknit - f1 3\nout 3\n", r);
+  EXPECT_EQ(r.first_error().rfind("t.k:6: error: [D030] the design needs a ", 0), 0u)
+      << r.first_error();
+}
+
 TEST(DatPassesTest, PositionCodes) {
   PassList list;
   list.bed_width = 100;
