@@ -328,6 +328,39 @@ TEST_F(DeviceEngineTest, ADatBombIsRefusedByItsDeclaredSize) {
   EXPECT_FALSE(std::filesystem::exists(store_ / "bomb.dat"));
 }
 
+// A slow check runs beside the device's replies: STATUS? is answered at
+// once while the job is checked, and the answer comes with a later tick.
+TEST_F(DeviceEngineTest, ASlowCheckKeepsTheDeviceAnswering) {
+  DeviceConfig config;
+  config.store = store_;
+  config.sync = false;
+  config.background_check_bytes = 0;  // every job is checked on the worker
+  config.checkers.knitout = [](const std::string&, std::span<const std::uint8_t>) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(400));
+    return std::string();
+  };
+  auto opened = DeviceEngine::open(config);
+  ASSERT_TRUE(opened.ok());
+  DeviceEngine& e = *opened.value();
+  const Job job = test::make_sheet_job("slow.k", 3, 3);
+  call(e, FrameType::Manifest, 4, 1, encode(job.manifest()));
+  for (std::uint32_t r = 0; r < job.row_count(); ++r) {
+    call(e, FrameType::Row, 4, r, Bytes(job.row(r).begin(), job.row(r).end()));
+  }
+  e.tick(now_);
+  const auto asked = std::chrono::steady_clock::now();
+  const StatusMessage during = status_of(call(e, FrameType::StatusRequest, 4, 9)[0]);
+  EXPECT_LT(std::chrono::steady_clock::now() - asked, std::chrono::milliseconds(200));
+  EXPECT_EQ(during.state, JobState::Receiving);
+  EXPECT_EQ(during.rows_received, job.row_count());
+  for (int i = 0; i < 300 && e.state() == JobState::Receiving; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    e.tick(now_);
+  }
+  EXPECT_NE(e.state(), JobState::Receiving);
+  EXPECT_NE(e.state(), JobState::Refused) << e.status().reason;
+}
+
 TEST_F(DeviceEngineTest, CountersSurviveARestartAndTheBufferDoesNot) {
   const Job job = test::make_sheet_job("s.k", 4, 8);
   {
