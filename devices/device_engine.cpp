@@ -102,6 +102,10 @@ std::string check_job(const std::filesystem::path& file, const ManifestMessage& 
     return check ? check(manifest.name, bytes) : std::string();
   } catch (const std::bad_alloc&) {
     return "[J007] the device ran out of memory checking the job";
+  } catch (const std::exception& e) {
+    // A checker that fails in itself refuses the job; it never takes the
+    // device down.
+    return std::string("[J007] the device could not check the job: ") + e.what();
   }
 }
 

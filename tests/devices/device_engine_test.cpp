@@ -361,6 +361,22 @@ TEST_F(DeviceEngineTest, ASlowCheckKeepsTheDeviceAnswering) {
   EXPECT_NE(e.state(), JobState::Refused) << e.status().reason;
 }
 
+TEST_F(DeviceEngineTest, ACheckerThatThrowsRefusesTheJobAndTheDeviceKeepsServing) {
+  DeviceConfig config;
+  config.store = store_;
+  config.sync = false;
+  config.checkers.knitout = [](const std::string&, std::span<const std::uint8_t>) -> std::string {
+    throw std::runtime_error("checker failed");
+  };
+  auto opened = DeviceEngine::open(config);
+  ASSERT_TRUE(opened.ok());
+  DeviceEngine& e = *opened.value();
+  send_all(e, test::make_sheet_job("t.k", 3, 3), 6);
+  e.tick(now_);
+  EXPECT_EQ(e.state(), JobState::Refused);
+  EXPECT_EQ(e.status().reason, "[J007] the device could not check the job: checker failed");
+}
+
 TEST_F(DeviceEngineTest, CountersSurviveARestartAndTheBufferDoesNot) {
   const Job job = test::make_sheet_job("s.k", 4, 8);
   {
