@@ -9,6 +9,7 @@
 #include "backends/dat/raster.hpp"
 #include "knitout/parser.hpp"
 #include "planner/pipeline.hpp"
+#include "planner/schedule/schoolbus.hpp"
 #include "simulators/bed/bed_view.hpp"
 #include "simulators/bed/machine.hpp"
 #include "simulators/bed/profile.hpp"
@@ -89,8 +90,21 @@ std::optional<ScheduleOutcome> schedule_stitches(const StitchMeshFile& stitches,
   std::vector<EmittedPiece> emitted;
   try {
     outcome.schedule = schedule(stitches.mesh, params.schedule);
-    for (std::size_t p = 0; p < outcome.schedule.pieces.size(); ++p)
-      emitted.push_back(emit_piece(stitches.mesh, outcome.schedule, p, params.emit));
+    for (std::size_t p = 0; p < outcome.schedule.pieces.size(); ++p) {
+      try {
+        emitted.push_back(emit_piece(stitches.mesh, outcome.schedule, p, params.emit));
+      } catch (const NoTransferRoute& e) {
+        // Loops held around a row leave a moving loop no stop: the stitch
+        // mesh's rows there move too far at once for the bed. Another cut
+        // (another seed) or size makes other rows.
+        sink.error(source, 0, 0, "S911",
+                   "piece " + std::to_string(p + 1) + " cannot be knit: " + e.what() +
+                       ", where its rows shift too far at once for the loops held beside "
+                       "them; cut again with another seed (`wearknit cut --seed N`, "
+                       "`wearknit plan --seed N`) or at another size");
+        return std::nullopt;
+      }
+    }
   } catch (const ScheduleError& e) {
     sink.error(source, 0, 0, "S910", e.what());
     return std::nullopt;

@@ -54,8 +54,8 @@ class Bus {
       if (aboard.empty()) break;
       const Round round = choose(aboard);
       if (round.riding.empty())
-        throw std::logic_error("schoolbus: no free needle within reach of f" +
-                               std::to_string(*round.waiting_at.begin()));
+        throw NoTransferRoute("the loops on needle f" + std::to_string(*round.waiting_at.begin()) +
+                              " find no free needle within the racking limit on their way");
       board(round, plan);
       ride(round, plan);
     }

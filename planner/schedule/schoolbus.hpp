@@ -28,6 +28,7 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
 #include <vector>
 
 namespace planner {
@@ -42,6 +43,14 @@ struct Transfer {
   bool to_back = false;  // xfer f front b back (else xfer b back f front)
   int front = 0;
   int back = 0;
+};
+
+// Thrown when some loop finds no free needle within reach on its way: the
+// held loops around it leave no stop. The stitch mesh, not the program, is
+// then at fault (schedule_stitches reports it as S911).
+class NoTransferRoute : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
 };
 
 std::vector<Transfer> schoolbus(const std::vector<LoopMove>& moves,

@@ -426,6 +426,13 @@ TEST(SchoolbusTest, StopsShortOfAnIntermediateNeedleThatHoldsALoop) {
                           [](const Transfer& t) { return !t.to_back && t.front == 7; }));
 }
 
+TEST(SchoolbusTest, ARiderWithNoStopWithinReachIsANoTransferRoute) {
+  // 20 to the right with every needle from +1 to +19 holding a loop that
+  // stays: no stop within the racking limit of 8. The planner says so with
+  // its own error (the schedule stage reports it as S911), not a crash.
+  EXPECT_THROW(schoolbus({{0, 20}}, [](int n) { return n >= 1 && n <= 19; }), NoTransferRoute);
+}
+
 TEST(SchoolbusTest, ARiderThatStopsEarlyWaitsForTheNextRound) {
   // 12 to the right with +8 ... +5 held: the rider gets off at +4, 8 short
   // of its needle. It must not ride on from there at racking +8 in the same
