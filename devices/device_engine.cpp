@@ -248,8 +248,7 @@ Outcome DeviceEngine::load() {
                                                    e.what() +
                                                    ") that cannot be moved aside: " + ec.message());
     }
-    clear_buffers();
-    reset_state();
+    reset_state();  // the fields read before the failure
     event("unreadable device state " + path.string() + " (" + e.what() + "): kept as " +
           kept.string() + "; the device starts idle");
     return Ok{};
