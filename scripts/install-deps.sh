@@ -16,6 +16,7 @@ PACKAGES=(
   libcairo2-dev libpng-dev zlib1g-dev
   libssl-dev libtbb-dev
   nodejs
+  chromium
   time
 )
 
