@@ -66,7 +66,9 @@ std::string base64_decode(const std::string& text) {
   return out;
 }
 
-Image decode_png(const std::string& bytes) {
+}  // namespace
+
+Image read_png(const std::string& bytes) {
   png_image image{};
   image.version = PNG_IMAGE_VERSION;
   if (png_image_begin_read_from_memory(&image, bytes.data(), bytes.size()) == 0) {
@@ -82,6 +84,8 @@ Image decode_png(const std::string& bytes) {
   }
   return out;
 }
+
+namespace {
 
 // The text of a console call's arguments, joined by spaces.
 std::string console_text(const nlohmann::json& args) {
@@ -368,7 +372,7 @@ nlohmann::json Browser::evaluate(const std::string& expression, double timeout_s
 
 Image Browser::screenshot() {
   const nlohmann::json shot = command("Page.captureScreenshot", {{"format", "png"}}, 60);
-  return decode_png(base64_decode(shot.at("data").get<std::string>()));
+  return read_png(base64_decode(shot.at("data").get<std::string>()));
 }
 
 void Browser::mouse(const std::string& type, double x, double y, double delta_y) {

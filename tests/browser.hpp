@@ -24,6 +24,10 @@ struct Image {
   std::size_t count_near(std::uint32_t rgb, int tolerance) const;
 };
 
+// The pixels of a PNG file's bytes; throws std::runtime_error when they are
+// not a PNG.
+Image read_png(const std::string& bytes);
+
 // file:// URL of an absolute or relative path.
 std::string file_url(const std::filesystem::path& path);
 

@@ -188,6 +188,16 @@ std::string describe(const Wearability& result) {
   return text.str();
 }
 
+const TrialOutcome* farthest_failed_trial(const Wearability& result) {
+  const TrialOutcome* best = nullptr;
+  for (const auto& a : result.attempts) {
+    for (const TrialOutcome& t : a.trials) {
+      if (!t.success && t.caught > 0 && (best == nullptr || t.caught < best->caught)) best = &t;
+    }
+  }
+  return best;
+}
+
 std::string not_wearable_message(const Wearability& result) {
   std::ostringstream text;
   text << "the garment with every cut open did not come off the wearer in "
@@ -212,14 +222,7 @@ std::string not_wearable_message(const Wearability& result) {
     text << " (--recut-limit " << result.params.recut_limit << ")";
   }
   text << "; every arc is labelled lace";
-  // Where the garment stays caught: of the trials of the cuts tried, the one
-  // that left the fewest vertices within reach of the wearer.
-  const TrialOutcome* best = nullptr;
-  for (const auto& a : result.attempts) {
-    for (const TrialOutcome& t : a.trials) {
-      if (!t.success && t.caught > 0 && (best == nullptr || t.caught < best->caught)) best = &t;
-    }
-  }
+  const TrialOutcome* best = farthest_failed_trial(result);
   if (best != nullptr && 2 * best->caught > best->cloth_vertices) {
     text << ". In the trial that got farthest, " << best->caught << " of the "
          << best->cloth_vertices
@@ -246,6 +249,8 @@ std::string write_wearability(const std::string& dir, const Wearability& result,
   // the arc (Fig. 18).
   std::vector<double> lace_share(result.cover.arcs.size(), 1.0);
   const int chosen = chosen_run(result.study);
+  // Not wearable with every cut open (W020): where the garment stays caught.
+  const TrialOutcome* caught = chosen < 0 ? farthest_failed_trial(result) : nullptr;
   if (chosen >= 0) {
     if (result.params.runs > 1) {
       lace_share = result.study.lace_probability;
@@ -256,7 +261,7 @@ std::string write_wearability(const std::string& dir, const Wearability& result,
   }
   return knitout::write_file_atomically(
       (base / "wearability.png").string(),
-      [&](std::ostream& out) { draw_wearability(out, result.cover, lace_share); });
+      [&](std::ostream& out) { draw_wearability(out, result.cover, lace_share, caught); });
 }
 
 std::optional<WearabilityRecord> read_wearability(const std::string& dir,

@@ -98,6 +98,9 @@ std::uint64_t journal_context(const PolygonMesh& wearer, const WearabilityStageP
 
 // "wearability: N arcs, S sew, L lace; ..." as the verb prints it.
 std::string describe(const Wearability& result);
+// Of the failed trials of every cut tried, the one that left the fewest
+// cloth vertices on the wearer (where the garment stays caught), or null.
+const TrialOutcome* farthest_failed_trial(const Wearability& result);
 // The W020 message when no cut came off the wearer with every cut open.
 std::string not_wearable_message(const Wearability& result);
 

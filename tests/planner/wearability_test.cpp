@@ -10,7 +10,9 @@
 
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/wearability/wearability_io.hpp"
+#include "planner/wearability/wearability_picture.hpp"
 #include "planner/wearability/wearability_stage.hpp"
+#include "tests/browser.hpp"
 #include "tests/planner/cover_shapes.hpp"
 #include "tests/test_support.hpp"
 
@@ -437,6 +439,37 @@ TEST(WearabilityMessageTest, W020NamesWhereTheGarmentStaysCaught) {
                 "400 of the 500 cloth vertices are still on the wearer: the open garment does not "
                 "move off it at all"),
             std::string::npos);
+}
+
+// The picture of a garment that does not come off (W020) paints the faces
+// where it stays caught orange, and only those near the caught place.
+TEST(WearabilityPictureTest, ThePlaceWhereTheGarmentStaysCaughtIsPainted) {
+  const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  const std::vector<double> lace(cover.arcs.size(), 1.0);
+  const auto orange = [&](const planner::TrialOutcome* caught) {
+    std::ostringstream png;
+    planner::draw_wearability(png, cover, lace, caught);
+    // Shaded by the light: near orange, not exactly it.
+    const Image image = read_png(png.str());
+    std::size_t count = 0;
+    for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
+      const int r = image.rgba[i], g = image.rgba[i + 1], b = image.rgba[i + 2];
+      count += r > 150 && r > g + 40 && g > b + 40;
+    }
+    return count;
+  };
+  planner::TrialOutcome caught;
+  caught.caught = 10;
+  caught.cloth_vertices = 300;
+  caught.caught_at = cover.positions[0];
+  caught.caught_radius = 0.3;
+  const std::size_t none = orange(nullptr);
+  const std::size_t small = orange(&caught);
+  caught.caught_radius = 0.9;
+  const std::size_t large = orange(&caught);
+  EXPECT_LT(none, 100u);
+  EXPECT_GT(small, none + 200);
+  EXPECT_GT(large, small + 500);
 }
 
 }  // namespace
