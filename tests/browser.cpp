@@ -370,9 +370,13 @@ nlohmann::json Browser::evaluate(const std::string& expression, double timeout_s
   return value.contains("value") ? value["value"] : nlohmann::json();
 }
 
-Image Browser::screenshot() {
+std::string Browser::screenshot_png() {
   const nlohmann::json shot = command("Page.captureScreenshot", {{"format", "png"}}, 60);
-  return read_png(base64_decode(shot.at("data").get<std::string>()));
+  return base64_decode(shot.at("data").get<std::string>());
+}
+
+Image Browser::screenshot() {
+  return read_png(screenshot_png());
 }
 
 void Browser::mouse(const std::string& type, double x, double y, double delta_y) {

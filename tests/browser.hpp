@@ -58,8 +58,9 @@ class Browser {
   // console.assert messages, uncaught exceptions and failed loads.
   const std::vector<std::string>& console_errors() const { return errors_; }
 
-  // The page as it is on screen now.
+  // The page as it is on screen now: its pixels, or the PNG file's bytes.
   Image screenshot();
+  std::string screenshot_png();
 
   // A mouse event at client coordinates: type is "mouseMoved",
   // "mousePressed", "mouseReleased" or "mouseWheel" (delta_y for the wheel).
