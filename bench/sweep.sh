@@ -16,7 +16,10 @@
 # code, exit, pieces, vm_rejected, seconds, message), OUT/sweep.md (the table
 # of docs/results.md, bench/sweep_table.py) and prints the summary:
 # runs, ok, failures by stage and code, internal errors. Exit 1 when there is
-# an internal error, a failure without a code or a piece the VM rejects.
+# an internal error, a failure without a code, a failed run whose folder is
+# left inconsistent (result "inconsistent": a finished stage's result
+# missing, the failed stage's result or a temporary file present) or a piece
+# the VM rejects.
 source "$(dirname "$0")/plan_common.sh"
 if [ -z "${MESHES:-}" ]; then
   MESHES=$(cd "$shared/meshes" && for f in *.obj; do echo "${f%.obj}"; done)
@@ -49,6 +52,24 @@ record() {
     "${diag:--}" "$code" "$pieces" "$rejected" "$seconds" "$message" >>"$table"
 }
 
+# Whether a failed run left its folder consistent: the stages before the
+# failing one keep their results, the failing one wrote none (its main
+# output absent, no pieces/ from a failed schedule), and no temporary file
+# of an interrupted write is left.
+consistent() {
+  local dir=$1 failed=$2 stage
+  local -A result=([cut]=cut.json [stitch-mesh]=stitch-mesh.smobj [schedule]=schedule.json)
+  for stage in cut stitch-mesh schedule; do
+    if [ "$stage" = "$failed" ]; then
+      [ ! -e "$dir/${result[$stage]}" ] || return 1
+      [ "$stage" != schedule ] || [ ! -e "$dir/pieces" ] || return 1
+      break
+    fi
+    [ -s "$dir/${result[$stage]}" ] || return 1
+  done
+  [ -z "$(find "$dir" -name '*.tmp-*' -print -quit 2>/dev/null)" ]
+}
+
 # The knit branch of one mesh, seed and size.
 knit_branch() {
   local mesh=$1 seed=$2 size=$3 start
@@ -68,6 +89,7 @@ knit_branch() {
     if [ "$code" -ne 0 ]; then
       local result=failed
       grep -q 'internal error' "$log" && result=internal
+      consistent "$dir" "$stage" || result=inconsistent
       record "$mesh" "$seed" "$size" "$result" "$stage" "$code" 0 0 "$start" "$log"
       return
     fi
@@ -120,15 +142,16 @@ rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1]) if l.strip()]
 ok = [r for r in rows if r[3] == "ok"]
 failed = [r for r in rows if r[3] != "ok"]
 internal = [r for r in rows if r[3] == "internal"]
+inconsistent = [r for r in rows if r[3] == "inconsistent"]
 uncoded = [r for r in failed if r[5] == "-"]
 rejected = sum(int(r[8]) for r in rows)
 print(f"runs {len(rows)}, ok {len(ok)}, failed {len(failed)}, internal errors {len(internal)}, "
-      f"failures without a code {len(uncoded)}, pieces {sum(int(r[7]) for r in ok)}, "
+      f"failures without a code {len(uncoded)}, folders left inconsistent {len(inconsistent)}, pieces {sum(int(r[7]) for r in ok)}, "
       f"pieces the VM rejected {rejected}")
 by = collections.Counter((r[4], r[5]) for r in failed)
 for (stage, code), n in sorted(by.items()):
     print(f"  {stage} {code}: {n}")
-for r in internal + uncoded:
+for r in internal + uncoded + inconsistent:
     print("  " + " ".join(r[:3]) + ": " + r[10])
-sys.exit(1 if internal or uncoded or rejected else 0)
+sys.exit(1 if internal or uncoded or inconsistent or rejected else 0)
 PY
