@@ -61,6 +61,9 @@ const std::vector<Verb>& verbs() {
        "N:OUT.png]",
        "the assembly guide of a plan folder: pieces laid flat, seams numbered, sew and lace",
        run_assembly},
+      {"view", "view DIR",
+       "write DIR/index.html: the plan in a browser (3D, seams, pieces, figures), offline",
+       run_view},
   };
   return kVerbs;
 }

@@ -23,6 +23,7 @@
 #include "knitout/parser.hpp"
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/mesh/shapes.hpp"
+#include "planner/viewer/plan_page.hpp"
 #include "simulators/bed/validate.hpp"
 
 namespace wearknit::cli {
@@ -84,12 +85,19 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
   if (pattern == "seed") params.schedule.emit.pattern = planner::StitchPattern::Seed;
   PlanRunOptions run;
   run.quiet = values.count("quiet") != 0;
+  // The page to open comes first: it is where the demo's results are shown.
+  const std::string page_path = (dir / "index.html").string();
+  context.out << "open: " << page_path << '\n';
   context.out << "wearknit demo: an ellipsoid and its cover, built in code (" << inputs.garment
               << ", " << inputs.wearer << ")\n";
   const int code = run_plan_and_report(inputs, params, out_dir, run, context);
-  if (code != kExitOk) {
+  // The page shows whatever the plan wrote, also when a stage failed.
+  planner::viewer::PlanPageSummary page;
+  const std::string page_failure = planner::viewer::write_plan_page(dir, &page);
+  if (!page_failure.empty()) context.err << "wearknit demo: " << page_failure << '\n';
+  if (code != kExitOk || !page_failure.empty()) {
     context.err << "wearknit demo FAILED\n";
-    return code;
+    return code != kExitOk ? code : kExitUsage;
   }
 
   // Independent checks of what the plan wrote.
@@ -123,6 +131,8 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
     }
     if (pieces == 0) problems.push_back("no pieces");
     if (!fs::is_regular_file(dir / "assembly.svg")) problems.push_back("no assembly guide");
+    if (page.seams == 0 || page.pieces == 0)
+      problems.push_back(page_path + ": the page shows no seams or no pieces");
   }
   for (const std::string& p : problems) context.err << "wearknit demo: " << p << '\n';
   if (!problems.empty()) {
@@ -132,9 +142,12 @@ int run_demo(const std::vector<std::string>& args, Context& context) {
   context.out << "checked: " << pieces << " piece" << (pieces == 1 ? "" : "s")
               << " valid on the needle-bed VM (" << bed::default_profile().name
               << "), each with its DAT; " << arcs
-              << " cut-arcs, each labelled sew or lace; the assembly guide\n"
+              << " cut-arcs, each labelled sew or lace; the assembly guide; the page ("
+              << (page.bytes + 1023) / 1024 << " KB)\n"
               << "open:\n";
   const std::pair<const char*, const char*> to_open[] = {
+      {"index.html",
+       "everything below in a browser: the garment in 3D with its seams, the pieces, the figures"},
       {"assembly.pdf", "how to put the pieces together: seams numbered, sew and lace"},
       {"assembly-3d.png", "the garment on its wearer, seams coloured sew and lace"},
       {"cuts-3d.png", "where the cover is cut"},

@@ -2,12 +2,14 @@
 // planner::run_plan (planner/plan.hpp). Every stage's options are the ones
 // its own verb takes (stage_options.hpp).
 #include <cmath>
+#include <filesystem>
 #include <ostream>
 
 #include "apps/wearknit/cli.hpp"
 #include "apps/wearknit/plan_display.hpp"
 #include "apps/wearknit/stage_options.hpp"
 #include "planner/mesh/mesh_io.hpp"
+#include "planner/viewer/plan_page.hpp"
 
 namespace wearknit::cli {
 
@@ -88,7 +90,17 @@ int run_plan(const std::vector<std::string>& args, Context& context) {
   params.pictures = values.count("no-pictures") == 0;
   params.restart = values.count("restart") != 0;
   run.quiet = values.count("quiet") != 0;
-  return run_plan_and_report(inputs, params, dir, run, context);
+  const int code = run_plan_and_report(inputs, params, dir, run, context);
+  // The page shows whatever the plan wrote, also when a stage failed.
+  if (!std::filesystem::is_directory(dir)) return code;
+  planner::viewer::PlanPageSummary page;
+  const std::string failure = planner::viewer::write_plan_page(dir, &page);
+  if (!failure.empty()) {
+    context.err << "wearknit plan: " << failure << '\n';
+    return code == kExitOk ? kExitUsage : code;
+  }
+  if (!run.quiet) print_page_line(dir, page, context);
+  return code;
 }
 
 }  // namespace wearknit::cli
