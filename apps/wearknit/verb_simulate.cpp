@@ -1,8 +1,11 @@
 // wearknit simulate: a dry run on the needle-bed virtual machine, with
-// statistics, the bed view picture and the knit graph.
+// statistics, the bed view picture, the interactive bed view page and the
+// knit graph.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -14,6 +17,8 @@
 #include "backends/dat/pass_preview.hpp"
 #include "knitout/output_file.hpp"
 #include "knitout/parser.hpp"
+#include "simulators/bed/bed_page.hpp"
+#include "simulators/bed/bed_timeline.hpp"
 #include "simulators/bed/bed_view.hpp"
 #include "simulators/bed/knit_graph.hpp"
 #include "simulators/bed/machine.hpp"
@@ -29,6 +34,7 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
   std::string machine_name;
   std::string bed_view_path;
   std::string knit_graph_path;
+  std::string html_path;
   std::size_t max_repeats = 20;
   po::options_description options("options");
   options.add_options()("input", po::value<std::string>(&input)->required(),
@@ -39,6 +45,8 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
       "json", "statistics and diagnostics as one JSON object on stdout")(
       "bed-view", po::value<std::string>(&bed_view_path),
       "write the needle x time bed view picture (.png or .svg)")(
+      "html", po::value<std::string>(&html_path),
+      "write the interactive bed view: one self-contained HTML page")(
       "knit-graph", po::value<std::string>(&knit_graph_path),
       "write every loop with its yarn and parents as JSON")(
       "passes", "with the statistics, list every carriage pass the DAT backend forms")(
@@ -66,8 +74,8 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
     }
   }
   const bool json = values.count("json") != 0;
-  const bool stats_wanted =
-      values.count("stats") != 0 || json || (bed_view_path.empty() && knit_graph_path.empty());
+  const bool stats_wanted = values.count("stats") != 0 || json ||
+                            (bed_view_path.empty() && knit_graph_path.empty() && html_path.empty());
 
   std::ifstream file;
   std::istream* in = &std::cin;
@@ -80,15 +88,28 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
     }
     in = &file;
   }
+  // The page shows the source text under the pointer: standard input is
+  // read whole first (a file is read again when the page is written).
+  std::string stdin_text;
+  std::istringstream stdin_copy;
+  if (!html_path.empty() && input == "-") {
+    stdin_text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+    stdin_copy.str(stdin_text);
+    in = &stdin_copy;
+  }
 
   knitout::DiagnosticSink sink;
   bed::BedView bed_view;
   bed::KnitGraph knit_graph;
-  bed::ObserverPair observers(bed_view_path.empty() ? nullptr : &bed_view,
-                              knit_graph_path.empty() ? nullptr : &knit_graph);
+  bed::BedTimeline timeline;
+  bed::ObserverPair pictures(bed_view_path.empty() ? nullptr : &bed_view,
+                             knit_graph_path.empty() ? nullptr : &knit_graph);
+  bed::ObserverPair observers(&pictures, html_path.empty() ? nullptr : &timeline);
   bed::MachineOptions machine_options;
   machine_options.max_repeats = max_repeats;
-  if (!bed_view_path.empty() || !knit_graph_path.empty()) machine_options.observer = &observers;
+  if (!bed_view_path.empty() || !knit_graph_path.empty() || !html_path.empty()) {
+    machine_options.observer = &observers;
+  }
 
   knitout::Reader reader(*in, source, sink);
   std::optional<std::size_t> header_carriers;
@@ -151,6 +172,30 @@ int run_simulate(const std::vector<std::string>& args, Context& context) {
   int status = sink.has_errors() ? kExitInvalid : kExitOk;
   if (!bed_view_path.empty()) {
     const std::string failure = bed_view.write(bed_view_path, machine, source);
+    if (!failure.empty()) {
+      context.err << "wearknit simulate: " << failure << "\n";
+      status = kExitUsage;
+    }
+  }
+  if (!html_path.empty()) {
+    std::string file_text;
+    if (input != "-") {
+      std::ifstream again(input, std::ios::binary);
+      file_text.assign(std::istreambuf_iterator<char>(again), std::istreambuf_iterator<char>());
+    }
+    bed::BedPageInput page;
+    page.title = std::filesystem::path(source).filename().string();
+    std::ostringstream subtitle;
+    subtitle << "on " << profile->name << " · " << stats.lines << " lines, " << stats.sweeps
+             << " sweeps · estimated " << std::lround(stats.estimated_time_s) << " s · "
+             << (sink.has_errors() ? "INVALID" : "valid") << " (" << stats.errors
+             << (stats.errors == 1 ? " error, " : " errors, ") << stats.warnings
+             << (stats.warnings == 1 ? " warning)" : " warnings)");
+    page.subtitle = subtitle.str();
+    page.timeline = timeline.serialize(diagnostics);
+    page.source_text = input == "-" ? std::string_view(stdin_text) : std::string_view(file_text);
+    const std::string failure = knitout::write_file_atomically(
+        html_path, [&](std::ostream& out) { bed::write_bed_page(out, page); });
     if (!failure.empty()) {
       context.err << "wearknit simulate: " << failure << "\n";
       status = kExitUsage;

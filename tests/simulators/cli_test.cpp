@@ -191,5 +191,43 @@ TEST_F(VmCliTest, SimulateWritesBedViewAndKnitGraph) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "view.gif"));
 }
 
+TEST_F(VmCliTest, SimulateWritesTheHtmlBedViewBesideThePicture) {
+  const std::string html = (dir_ / "view.html").string();
+  const std::string svg = (dir_ / "view.svg").string();
+  auto r = run_wearknit("simulate '" + good_ + "' --html '" + html + "' --bed-view '" + svg + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");  // no statistics unless asked for
+  const std::string page = read_file(html);
+  EXPECT_EQ(page.substr(0, 15), "<!DOCTYPE html>");
+  EXPECT_NE(page.find("<title>good.k</title>"), std::string::npos);
+  EXPECT_NE(page.find("id=\"bed-timeline\""), std::string::npos);
+  EXPECT_NE(page.find("id=\"bed-source\""), std::string::npos);
+  EXPECT_NE(page.find("wk.mountBedView"), std::string::npos);
+  EXPECT_EQ(page.find("http://"), std::string::npos);
+  EXPECT_EQ(page.find("https://"), std::string::npos);
+  EXPECT_NE(read_file(svg).find("<svg"), std::string::npos);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_),
+                          std::filesystem::directory_iterator()),
+            4);  // good.k, bad.k and the two outputs: no temporary file left
+}
+
+TEST_F(VmCliTest, SimulateHtmlOfAnInvalidProgramFromStdin) {
+  const std::string html = (dir_ / "bad.html").string();
+  const auto r = run_wearknit("simulate - --html '" + html + "'", kBad);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("<stdin>:3: error: [V004]"), std::string::npos) << r.err;
+  const std::string page = read_file(html);
+  EXPECT_NE(page.find("<title>&lt;stdin&gt;</title>"), std::string::npos);
+  EXPECT_NE(page.find("INVALID (1 error, 1 warning)"), std::string::npos) << page.substr(0, 2000);
+  EXPECT_NE(page.find("id=\"bed-source\""), std::string::npos);
+}
+
+TEST_F(VmCliTest, SimulateHtmlIntoAMissingFolderIsAnIoError) {
+  const auto r =
+      run_wearknit("simulate '" + good_ + "' --html '" + (dir_ / "no/such/v.html").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("wearknit simulate: "), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace wearknit::cli

@@ -19,7 +19,26 @@ wk.dataBytes = async function (id) {
     throw new Error("this browser cannot decompress the page's data (no DecompressionStream)");
   }
   const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("gzip"));
-  return new Uint8Array(await new Response(stream).arrayBuffer());
+  // Read chunk by chunk into one buffer of the size gzip's trailer gives
+  // (ISIZE, the size modulo 2^32), which is quicker than Response.arrayBuffer
+  // on large blocks; grown if the trailer understates it.
+  const n = bytes.length;
+  const size = (bytes[n - 4] | (bytes[n - 3] << 8) | (bytes[n - 2] << 16) | (bytes[n - 1] << 24)) >>> 0;
+  let out = new Uint8Array(size);
+  let used = 0;
+  const reader = stream.getReader();
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    if (used + value.length > out.length) {
+      const grown = new Uint8Array(Math.max(2 * out.length, used + value.length));
+      grown.set(out.subarray(0, used));
+      out = grown;
+    }
+    out.set(value, used);
+    used += value.length;
+  }
+  return used === out.length ? out : out.slice(0, used);
 };
 
 // The JSON object of data block ID.
