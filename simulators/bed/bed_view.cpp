@@ -148,7 +148,11 @@ std::string BedView::write(const std::string& path, const Machine& machine,
   const double cell_h = std::clamp(std::floor(1000.0 / pixel_rows), 1.0, 8.0);
   const double panel_w = cell_w * needles;
   const double plot_h = cell_h * pixel_rows;
-  const double left = 80;
+  // The strip left of the front bed holding the transfer and racking marks.
+  constexpr double kMarkStrip = 16;
+  constexpr double kTransferMark = 15;  // x of the transfer mark, left of the plot
+  constexpr double kRackMark = 8;
+  const double left = 96;
   const double gap = 40;
   const double top = 56;
   const double bottom = 48;
@@ -238,40 +242,30 @@ std::string BedView::write(const std::string& path, const Machine& machine,
         }
       }
     }
-    // Transfers (black ticks at the source needle) and racking changes (red
-    // lines across both beds).
+    // Transfer passes (grey) and racking changes (red) as short ticks in a
+    // strip left of the front bed, so that the fabric stays what one sees
+    // first; a pixel row merging several sweeps is marked when any of them is.
     for (int r = 0; r < pixel_rows; ++r) {
       const double y = top + plot_h - (r + 1) * cell_h;
       bool racked = false;
-      double racking = 0;
+      bool transfers = false;
       for (int k = r * merge; k < std::min<int>((r + 1) * merge, static_cast<int>(rows_.size()));
            ++k) {
         const Row& row = rows_[static_cast<std::size_t>(k)];
         racked |= row.racked;
-        racking = row.racking;
-        cairo_set_source_rgb(cr, 0, 0, 0);
-        for (int slot : row.transfers) {
-          if (slot < lo || slot > hi) continue;
-          for (int b = 0; b < 2; ++b) {
-            const double x = panel_x[b] + (slot - lo + 0.5) * cell_w;
-            cairo_rectangle(cr, x - std::max(0.5, cell_w * 0.15), y, std::max(1.0, cell_w * 0.3),
-                            cell_h);
-            cairo_fill(cr);
-          }
-        }
+        transfers |= !row.transfers.empty();
+      }
+      // A pixel apart when rows are tall enough, so that marked sweeps stay countable.
+      const double tick_h = cell_h >= 3 ? cell_h - 1 : cell_h;
+      if (transfers) {
+        cairo_set_source_rgb(cr, 0.45, 0.48, 0.55);
+        cairo_rectangle(cr, left - kTransferMark, y, 5, tick_h);
+        cairo_fill(cr);
       }
       if (racked) {
-        cairo_set_source_rgba(cr, 0.85, 0, 0, 0.8);
-        cairo_set_line_width(cr, 1);
-        for (int b = 0; b < 2; ++b) {
-          cairo_move_to(cr, panel_x[b], y + cell_h);
-          cairo_line_to(cr, panel_x[b] + panel_w, y + cell_h);
-        }
-        cairo_stroke(cr);
-        cairo_move_to(cr, left - 8, y + cell_h);
-        cairo_line_to(cr, left - 2, y + cell_h);
-        cairo_stroke(cr);
-        (void)racking;
+        cairo_set_source_rgb(cr, 0.85, 0.1, 0.1);
+        cairo_rectangle(cr, left - kRackMark, y + cell_h - tick_h, 6, tick_h);
+        cairo_fill(cr);
       }
     }
     cairo_set_antialias(cr, CAIRO_ANTIALIAS_DEFAULT);
@@ -301,10 +295,10 @@ std::string BedView::write(const std::string& path, const Machine& machine,
           std::min(rows_.size() - 1, static_cast<std::size_t>(r) * static_cast<std::size_t>(merge));
       if (rows_.empty()) break;
       const double y = top + plot_h - r * cell_h;
-      cairo_move_to(cr, left - 5, y);
-      cairo_line_to(cr, left, y);
+      cairo_move_to(cr, left - kMarkStrip - 5, y);
+      cairo_line_to(cr, left - kMarkStrip, y);
       cairo_stroke(cr);
-      text(left - 8, y + 4, std::to_string(rows_[k].line), 10, true);
+      text(left - kMarkStrip - 8, y + 4, std::to_string(rows_[k].line), 10, true);
     }
     // Legend.
     const double lx = left + 2 * panel_w + gap + 20;
@@ -338,16 +332,17 @@ std::string BedView::write(const std::string& path, const Machine& machine,
     cairo_set_source_rgb(cr, 0, 0, 0);
     text(lx + 18, ly, "darker: 2+ loops held", 11);
     ly += 16;
-    cairo_rectangle(cr, lx + 4, ly - 9, 3, 10);
+    cairo_set_source_rgb(cr, 0.45, 0.48, 0.55);
+    cairo_rectangle(cr, lx + 2, ly - 5, 5, 2);
     cairo_fill(cr);
-    text(lx + 18, ly, "transfer", 11);
-    ly += 16;
-    cairo_set_source_rgb(cr, 0.85, 0, 0);
-    cairo_move_to(cr, lx, ly - 4);
-    cairo_line_to(cr, lx + 12, ly - 4);
-    cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    text(lx + 18, ly, "racking change", 11);
+    text(lx + 18, ly, "transfers (left margin)", 11);
+    ly += 16;
+    cairo_set_source_rgb(cr, 0.85, 0.1, 0.1);
+    cairo_rectangle(cr, lx + 2, ly - 5, 6, 2);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    text(lx + 18, ly, "racking change (left margin)", 11);
     ly += 16;
     text(lx, ly, "racking at end: " + knitout::format_number(machine.racking()), 11);
 

@@ -1,6 +1,7 @@
 // bed::BedView: the needle x time picture of a program (the paper's "bed
 // view", Fig. 9b): which needles hold loops at each moment, coloured by the
-// carrier of the top loop, with transfers and racking changes marked.
+// carrier of the top loop, with sweeps that transfer and racking changes
+// marked by short ticks in a margin, so that the fabric is what one sees.
 //
 // Attach it to a Machine as its Observer; it samples the bed at the end of
 // every sweep (docs/vm.md), so a row of the picture is one carriage crossing.
