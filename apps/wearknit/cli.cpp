@@ -17,8 +17,9 @@ const std::vector<Verb>& verbs() {
        "run every instruction through the needle-bed virtual machine", run_validate},
       {"simulate",
        "simulate FILE.k [--stats] [--passes] [--json] [--bed-view OUT.png|OUT.svg] "
-       "[--knit-graph OUT.json] [--machine M]",
-       "dry run: statistics, estimated machine time, bed view, knit graph", run_simulate},
+       "[--html OUT.html] [--knit-graph OUT.json] [--machine M]",
+       "dry run: statistics, estimated machine time, bed views (picture, page), knit graph",
+       run_simulate},
       {"dat", "dat FILE.k -o OUT.dat [--machine M] [--verify]",
        "knitout -> Shima Seiki DAT (swg091n2), byte for byte as knitout-to-dat.js", run_dat},
       {"dat-info", "dat-info FILE.dat [--passes] [--png OUT.png]",

@@ -706,7 +706,8 @@ wk.mountBedView = function (container, bytes, sourceText) {
     view: () => ({ ...view }),
     setView,
     resetZoom,
-    redraw: drawNow,
+    // Redraws everything now (the bench times it).
+    redraw: () => { baseDirty = true; drawNow(); },
     destroy: () => {
       window.removeEventListener("mousemove", onMove);
       window.removeEventListener("mouseup", onUp);
