@@ -62,7 +62,7 @@ BedTimeline::Cell* BedTimeline::cell(knitout::Needle needle) {
 
 void BedTimeline::record(knitout::Needle needle, const Cell& c, std::uint32_t line, bool transfer) {
   if (needle.is_slider()) return;
-  if (records_.size() >= kMaxRecords) {
+  if (records_.size() >= max_records_) {
     truncated_ = true;
     return;
   }
@@ -77,6 +77,7 @@ void BedTimeline::record(knitout::Needle needle, const Cell& c, std::uint32_t li
 }
 
 void BedTimeline::loop_made(const LoopEvent& event) {
+  if (stopped_) return;
   if (made_.empty() || made_.back().first != event.line) {
     made_.emplace_back(event.line, event.yarn);
   } else {
@@ -105,6 +106,7 @@ void BedTimeline::loop_made(const LoopEvent& event) {
 
 void BedTimeline::loops_moved(knitout::Needle from, knitout::Needle to, int count,
                               std::uint32_t line) {
+  if (stopped_) return;
   move_lines_.push_back(line);
   const bool split = split_pending_ && split_needle_ == from && split_line_ == line;
   split_pending_ = false;
@@ -125,6 +127,7 @@ void BedTimeline::loops_moved(knitout::Needle from, knitout::Needle to, int coun
 
 void BedTimeline::loops_dropped(knitout::Needle needle, std::span<const LiveLoop> /*loops*/,
                                 std::uint32_t line) {
+  if (stopped_) return;
   Cell* c = cell(needle);
   if (c == nullptr) return;
   c->count = 0;
@@ -135,6 +138,7 @@ void BedTimeline::sweep_ended(const Machine& machine, std::uint32_t line) {
   // The machine ends a sweep when the first instruction of the next one has
   // already run, so the changes, moves and loops of lines after `line`
   // belong to the next sweep.
+  if (stopped_) return;
   std::size_t end = records_.size();
   const std::size_t begin = sweeps_.empty() ? 0 : sweeps_.back().record_end;
   while (end > begin && records_[end - 1].line > line) --end;
@@ -168,6 +172,14 @@ void BedTimeline::sweep_ended(const Machine& machine, std::uint32_t line) {
   const knitout::CarrierTable& names = machine.carrier_names();
   for (std::size_t c = carrier_names_.size(); c < names.size(); ++c) {
     carrier_names_.push_back(names.name(static_cast<knitout::CarrierId>(c)));
+  }
+  if (truncated_ || sweeps_.size() >= max_sweeps_) {
+    // Stop here: what the next sweep recorded already goes.
+    truncated_ = true;
+    stopped_ = true;
+    records_.resize(end);
+    move_lines_.clear();
+    made_.clear();
   }
 }
 

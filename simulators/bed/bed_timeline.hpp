@@ -12,11 +12,11 @@
 // per-sweep copy of the bed.
 //
 // Memory grows with the changes (one 12-byte record per loop made, moved or
-// dropped) and the sweeps (24 bytes each), not with sweeps x needles. After
-// kMaxRecords records the timeline stops recording needles (sweeps are still
-// recorded) and says so (`truncated`); the page then draws the bed up to
-// that point. Loops on sliders are not drawn: a needle whose loops moved to
-// a slider shows empty until they come back.
+// dropped) and the sweeps (40 bytes each), not with sweeps x needles. After
+// max_records records or max_sweeps sweeps the timeline stops recording at
+// the end of that sweep and says so (`truncated`); the page then draws the
+// program up to there. Loops on sliders are not drawn: a needle whose loops
+// moved to a slider shows empty until they come back.
 //
 // Serialised layout ("wearknit-bed-timeline 1"), little-endian, every
 // section starting at a multiple of 4 bytes so that a reader can view it as
@@ -68,8 +68,13 @@ class BedTimeline : public Observer {
  public:
   // About 100 MB of records here, and about as much in the page.
   static constexpr std::size_t kMaxRecords = 8'000'000;
-  // Needles farther than this from the first needle used are not recorded.
+  static constexpr std::size_t kMaxSweeps = 2'000'000;
+  // Needles farther than half this from the first needle used are not
+  // recorded (only the unlimited generic profile allows such programs).
   static constexpr int kMaxNeedles = 20000;
+
+  explicit BedTimeline(std::size_t max_records = kMaxRecords, std::size_t max_sweeps = kMaxSweeps)
+      : max_records_(max_records), max_sweeps_(max_sweeps) {}
 
   struct Sweep {
     std::uint32_t first_line = 0;
@@ -116,6 +121,8 @@ class BedTimeline : public Observer {
   // Records a needle's new state (sliders are not recorded).
   void record(knitout::Needle needle, const Cell& cell, std::uint32_t line, bool transfer);
 
+  std::size_t max_records_;
+  std::size_t max_sweeps_;
   std::int64_t base_ = 0;
   bool based_ = false;
   std::array<std::vector<Cell>, 4> beds_;  // by knitout::Bed; needle base_ + i
@@ -132,6 +139,7 @@ class BedTimeline : public Observer {
   double last_racking_ = 0;
   std::uint64_t lines_ = 0;  // the machine's count of source lines
   bool truncated_ = false;
+  bool stopped_ = false;                  // truncated, and the sweep where it happened ended
   std::vector<std::uint8_t> yarn_codes_;  // yarn -> 1 + first carrier, 0 = none
   std::vector<std::string> carrier_names_;
   std::vector<Sweep> sweeps_;

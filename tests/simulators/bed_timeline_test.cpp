@@ -10,6 +10,7 @@
 
 #include "knitout/generate.hpp"
 #include "knitout/parser.hpp"
+#include "simulators/bed/validate.hpp"
 
 namespace bed {
 namespace {
@@ -203,6 +204,38 @@ TEST(BedTimelineTest, PlacesDiagnosticsAtTheSweepOfTheirLine) {
   EXPECT_EQ(bad.diagnostics[0].line, 6u);
   EXPECT_EQ(bad.diagnostics[0].sweep, 1u);
   EXPECT_EQ(bad.diagnostics[0].severity, 0);
+}
+
+ReadTimeline run_capped(std::size_t max_records, std::size_t max_sweeps) {
+  knitout::DiagnosticSink sink;
+  const knitout::Program program = knitout::parse_string(kProgram, "t.k", sink);
+  BedTimeline timeline(max_records, max_sweeps);
+  MachineOptions options;
+  options.observer = &timeline;
+  validate(program, default_profile(), sink, "t.k", options);
+  EXPECT_TRUE(timeline.truncated());
+  return read_timeline(timeline.serialize(sink.sorted()));
+}
+
+TEST(BedTimelineTest, StopsAtTheEndOfTheSweepThatReachedItsRecordCap) {
+  // The fifth record (f2 emptied by the xfer of line 9) is the last: the
+  // timeline ends with that sweep, and says so.
+  const ReadTimeline t = run_capped(5, BedTimeline::kMaxSweeps);
+  EXPECT_EQ(t.flags, 1u);
+  ASSERT_EQ(t.sweeps.size(), 3u);
+  ASSERT_EQ(t.records.size(), 5u);
+  EXPECT_EQ(t.records[4].line, 9u);
+  EXPECT_EQ(t.sweeps[2].record_end, 5u);
+  // The diagnostics beyond it are placed at the last sweep recorded.
+  for (const auto& d : t.diagnostics) EXPECT_LE(d.sweep, 2u);
+}
+
+TEST(BedTimelineTest, StopsAtItsSweepCap) {
+  const ReadTimeline t = run_capped(BedTimeline::kMaxRecords, 2);
+  EXPECT_EQ(t.flags, 1u);
+  ASSERT_EQ(t.sweeps.size(), 2u);
+  EXPECT_EQ(t.records.size(), 4u);
+  EXPECT_EQ(t.sweeps[1].last_line, 7u);
 }
 
 TEST(BedTimelineTest, SerialisedSizeMatchesItsLayout) {
