@@ -24,7 +24,8 @@
 //
 //   header, 12 x u32: magic "WKBT" (0x54424b57), version 1, sweep count S,
 //     record count R, needle_min (i32), needle count W, last source line,
-//     flags (bit 0: truncated), carrier count C, diagnostic count D,
+//     flags (bit 0: truncated, bit 1: cells are u16, bit 2: line deltas
+//     are u16), carrier count C, diagnostic count D,
 //     two reserved 0
 //   carriers: C x (u8 length, UTF-8 name), padded to 4
 //   sweeps, S entries each, as arrays:
@@ -39,8 +40,10 @@
 //     u8  flags[S]        bit 0: racking changed since the previous sweep,
 //                         bit 1: transfers; padded to 4
 //   records, R entries each, as arrays:
-//     u32 cell[R]         (needle - needle_min) * 2 + bed (0 front, 1 back)
-//     u32 line_delta[R]   source line - first_line of the record's sweep
+//     u32 cell[R]         (needle - needle_min) * 2 + bed (0 front, 1 back);
+//                         u16 when flags bit 1 (2 W <= 65536), padded to 4
+//     u32 line_delta[R]   source line - first_line of the record's sweep;
+//                         u16 when flags bit 2 (every delta < 65536), padded
 //     u8  carrier[R]      1 + carrier id of the top loop, 0 = empty needle
 //     u8  count[R]        loops held, at most 255
 //     u8  flags[R]        bit 0: loops arrived by xfer or split; padded to 4

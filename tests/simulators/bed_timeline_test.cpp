@@ -48,7 +48,10 @@ ReadTimeline read_timeline(const std::string& bytes) {
   ReadTimeline t;
   std::size_t at = 0;
   auto u8 = [&]() { return static_cast<std::uint8_t>(bytes.at(at++)); };
-  auto u16 = [&]() { return static_cast<std::uint16_t>(u8() | u8() << 8); };
+  auto u16 = [&]() {
+    const std::uint16_t low = u8();
+    return static_cast<std::uint16_t>(low | u8() << 8);
+  };
   auto u32 = [&]() {
     std::uint32_t v = 0;
     for (int i = 0; i < 4; ++i) v |= std::uint32_t{u8()} << (8 * i);
@@ -89,15 +92,17 @@ ReadTimeline read_timeline(const std::string& bytes) {
   align();
   t.records.resize(records);
   for (auto& r : t.records) {
-    const std::uint32_t cell = u32();
+    const std::uint32_t cell = t.flags & 2 ? u16() : u32();
     r.needle = t.needle_min + static_cast<int>(cell / 2);
     r.bed = cell % 2 == 0 ? 'f' : 'b';
   }
+  align();
   for (const auto& s : t.sweeps) {
     for (std::uint32_t i = s.record_begin; i < s.record_end; ++i) {
-      t.records[i].line = s.first_line + u32();
+      t.records[i].line = s.first_line + (t.flags & 4 ? u16() : u32());
     }
   }
+  align();
   for (auto& r : t.records) r.carrier = u8();
   for (auto& r : t.records) r.count = u8();
   for (auto& r : t.records) r.flags = u8();
@@ -143,7 +148,7 @@ TEST(BedTimelineTest, RecordsEveryNeedleChangeInItsSweepWithItsLine) {
   const ReadTimeline t = read_timeline(run(kProgram, sink));
   EXPECT_EQ(t.magic, 0x54424b57u);
   EXPECT_EQ(t.version, 1u);
-  EXPECT_EQ(t.flags, 0u);
+  EXPECT_EQ(t.flags, 6u);  // short cells and line deltas
   EXPECT_EQ(t.needle_min, 1);
   EXPECT_EQ(t.width, 2u);
   EXPECT_EQ(t.last_line, 13u);
@@ -221,7 +226,7 @@ TEST(BedTimelineTest, StopsAtTheEndOfTheSweepThatReachedItsRecordCap) {
   // The fifth record (f2 emptied by the xfer of line 9) is the last: the
   // timeline ends with that sweep, and says so.
   const ReadTimeline t = run_capped(5, BedTimeline::kMaxSweeps);
-  EXPECT_EQ(t.flags, 1u);
+  EXPECT_EQ(t.flags & 1, 1u);
   ASSERT_EQ(t.sweeps.size(), 3u);
   ASSERT_EQ(t.records.size(), 5u);
   EXPECT_EQ(t.records[4].line, 9u);
@@ -232,10 +237,25 @@ TEST(BedTimelineTest, StopsAtTheEndOfTheSweepThatReachedItsRecordCap) {
 
 TEST(BedTimelineTest, StopsAtItsSweepCap) {
   const ReadTimeline t = run_capped(BedTimeline::kMaxRecords, 2);
-  EXPECT_EQ(t.flags, 1u);
+  EXPECT_EQ(t.flags & 1, 1u);
   ASSERT_EQ(t.sweeps.size(), 2u);
   EXPECT_EQ(t.records.size(), 4u);
   EXPECT_EQ(t.sweeps[1].last_line, 7u);
+}
+
+TEST(BedTimelineTest, KeepsLongLineDeltasWhole) {
+  // 70,000 comment lines inside one sweep: its second record is 70,001 lines
+  // after its first, too far for the short line deltas.
+  std::string text = ";!knitout-2\n;;Carriers: 1 2 3\nin 3\ntuck + f1 3\n";
+  for (int i = 0; i < 70000; ++i) text += ";\n";
+  text += "tuck + f2 3\nout 3\n";
+  knitout::DiagnosticSink sink;
+  const ReadTimeline t = read_timeline(run(text.c_str(), sink));
+  EXPECT_EQ(t.flags, 2u);  // short cells, long line deltas
+  ASSERT_EQ(t.sweeps.size(), 1u);
+  ASSERT_EQ(t.records.size(), 2u);
+  EXPECT_EQ(t.records[0].line, 4u);
+  EXPECT_EQ(t.records[1].line, 70005u);
 }
 
 TEST(BedTimelineTest, SerialisedSizeMatchesItsLayout) {

@@ -68,6 +68,7 @@ wk.parseBedTimeline = function (bytes) {
   };
   const u32s = (n) => { need(4 * n); const a = new Uint32Array(buffer, base + at, n); at += 4 * n; return a; };
   const i32s = (n) => { need(4 * n); const a = new Int32Array(buffer, base + at, n); at += 4 * n; return a; };
+  const u16s = (n) => { need(2 * n); const a = new Uint16Array(buffer, base + at, n); at += 2 * n; return a; };
   const u8s = (n) => { need(n); const a = new Uint8Array(buffer, base + at, n); at += n; return a; };
   t.sweepFirst = u32s(S);
   t.sweepLast = u32s(S);
@@ -77,8 +78,11 @@ wk.parseBedTimeline = function (bytes) {
   t.sweepCarrier = u8s(S);
   t.sweepFlags = u8s(S);
   align();
-  t.recCell = u32s(R);
-  t.recLineDelta = u32s(R);
+  const flags = view.getUint32(28, true);
+  t.recCell = flags & 2 ? u16s(R) : u32s(R);
+  align();
+  t.recLineDelta = flags & 4 ? u16s(R) : u32s(R);
+  align();
   t.recCarrier = u8s(R);
   t.recCount = u8s(R);
   t.recFlags = u8s(R);
