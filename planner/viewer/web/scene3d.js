@@ -216,7 +216,8 @@ wk.Scene3D = class {
       this.glRenderer = renderer;
     }
     this.kind = this.gl ? "webgl" : "canvas";
-    if (!this.gl) this.ctx = this.canvas.getContext("2d");
+    // Drawn on the CPU: many small paths are slower through a software GPU.
+    if (!this.gl) this.ctx = this.canvas.getContext("2d", { willReadFrequently: true });
     this.pending = false;
   }
 
@@ -524,6 +525,10 @@ wk.Scene3D = class {
     gl.polygonOffset(1, 1);
     for (const m of this.meshes) {
       if (!m.visible) continue;
+      // The wearer is pushed further back than the garment, so that a
+      // garment lying on its wearer stays in front of it (as in assembly-3d.png).
+      if (m.name === "wearer") gl.polygonOffset(4, 16);
+      else gl.polygonOffset(1, 1);
       reset();
       this.attribute(this.surfaceProgram, "position", m.gl.position, 3);
       this.attribute(this.surfaceProgram, "normal", m.gl.normal, 3);
@@ -560,10 +565,11 @@ wk.Scene3D = class {
   // ---- 2D canvas --------------------------------------------------------------
 
   prepareCanvas() {
-    // At most about 40,000 triangles in all, shared by the visible meshes.
+    // At most about 16,000 triangles in all, shared by the visible meshes:
+    // a software-drawn canvas fills some 20,000 small paths a second.
     const total = this.meshes.reduce((n, m) => n + m.tri.length / 3, 0);
     for (const m of this.meshes) {
-      const share = Math.max(2000, Math.round((40000 * (m.tri.length / 3)) / Math.max(1, total)));
+      const share = Math.max(2000, Math.round((16000 * (m.tri.length / 3)) / Math.max(1, total)));
       m.flat = wk.decimate(m.pos, m.tri, share);
       this.canvasColours(m);
     }
@@ -609,7 +615,7 @@ wk.Scene3D = class {
         const ex = eye[0] - pos[3 * a], ey = eye[1] - pos[3 * a + 1], ez = eye[2] - pos[3 * a + 2];
         const d = Math.abs(nx * ex + ny * ey + nz * ez) /
           ((Math.hypot(nx, ny, nz) || 1) * (Math.hypot(ex, ey, ez) || 1));
-        const light = 0.38 + 0.62 * d;
+        const light = 0.38 + 0.62 * Math.round(d * 24) / 24;
         faces.push({
           depth: sz[a] + sz[b] + sz[c] + (m.bias || 0),
           x: [sx[a], sx[b], sx[c]], y: [sy[a], sy[b], sy[c]],
@@ -618,17 +624,27 @@ wk.Scene3D = class {
       }
     }
     faces.sort((p, q) => q.depth - p.depth);
-    ctx.lineWidth = 0.6;
-    for (const f of faces) {
+    // Runs of faces of one shade (shades are quantised) are filled as one
+    // path; a stroke in the same shade closes the hairline gaps between them
+    // where there are few enough faces to afford it.
+    const stroke = faces.length < 6000;
+    ctx.lineWidth = 0.7;
+    for (let i = 0; i < faces.length;) {
+      const fill = faces[i].fill;
       ctx.beginPath();
-      ctx.moveTo(f.x[0], f.y[0]);
-      ctx.lineTo(f.x[1], f.y[1]);
-      ctx.lineTo(f.x[2], f.y[2]);
-      ctx.closePath();
-      ctx.fillStyle = f.fill;
-      ctx.strokeStyle = f.fill;
+      for (; i < faces.length && faces[i].fill === fill; ++i) {
+        const f = faces[i];
+        ctx.moveTo(f.x[0], f.y[0]);
+        ctx.lineTo(f.x[1], f.y[1]);
+        ctx.lineTo(f.x[2], f.y[2]);
+        ctx.closePath();
+      }
+      ctx.fillStyle = fill;
       ctx.fill();
-      ctx.stroke();
+      if (stroke) {
+        ctx.strokeStyle = fill;
+        ctx.stroke();
+      }
     }
     if (!this.showSeams) return;
     // Seams that face the viewer, over the surfaces.
