@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "knitout/output_file.hpp"
+#include "knitout/parser.hpp"
 #include "planner/assembly/assembly_model.hpp"
 #include "planner/assembly/assembly_page_layout.hpp"
 #include "planner/common/index.hpp"
@@ -24,6 +25,8 @@
 #include "planner/schedule/piece_layout.hpp"
 #include "planner/viewer/web_assets.hpp"
 #include "planner/wearability/wearability_io.hpp"
+#include "simulators/bed/bed_timeline.hpp"
+#include "simulators/bed/profile.hpp"
 #include "simulators/bed/web_assets.hpp"
 
 namespace planner::viewer {
@@ -430,8 +433,30 @@ PlanPageData collect_plan_page(const fs::path& dir) {
     for (std::size_t p = 0; p < piece_figures.size(); ++p)
       pieces.push_back({{"number", p + 1}, {"figures", piece_figures[p]}});
   }
+  // Each piece's knitout through the machine, as the interactive bed view
+  // (simulators/bed/web/bed_view.js) draws it, with its source text while the
+  // page's sources stay within kMaxPageSourceBytes; else its line numbers only.
+  // A piece whose knitout is missing keeps the schedule's picture.
+  std::size_t source_bytes = 0;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
-    const fs::path svg = dir / "pieces" / ("piece-" + std::to_string(p + 1) + ".svg");
+    const std::string name = "piece-" + std::to_string(p + 1);
+    const fs::path knitout_path = dir / "pieces" / (name + ".k");
+    if (fs::is_regular_file(knitout_path)) {
+      const std::string text = read_text(knitout_path);
+      knitout::DiagnosticSink sink;
+      const knitout::Program program = knitout::parse_string(text, knitout_path.string(), sink);
+      page.blocks.push_back(
+          {"bed-" + std::to_string(p + 1),
+           bed::timeline_bytes(program, bed::default_profile(), knitout_path.string(), sink)});
+      pieces[p]["bed_timeline"] = "bed-" + std::to_string(p + 1);
+      if (source_bytes + text.size() <= kMaxPageSourceBytes) {
+        source_bytes += text.size();
+        pieces[p]["bed_source"] = "bed-source-" + std::to_string(p + 1);
+        page.blocks.push_back({"bed-source-" + std::to_string(p + 1), text});
+      }
+      continue;
+    }
+    const fs::path svg = dir / "pieces" / (name + ".svg");
     if (!fs::is_regular_file(svg)) continue;
     const std::string id = "bed-" + std::to_string(p + 1);
     pieces[p]["bed_svg"] = id;
@@ -450,9 +475,10 @@ std::string write_plan_page(const fs::path& dir, PlanPageSummary* summary) {
   }
   bed::Page page;
   page.title = "wearknit plan: " + data.meta.value("folder", std::string());
-  page.styles = {bed::web_asset("page.css"), web_asset("plan_view.css")};
-  page.scripts = {bed::web_asset("common.js"), web_asset("scene3d.js"), web_asset("flat.js"),
-                  web_asset("plan_view.js")};
+  page.styles = {bed::web_asset("page.css"), bed::web_asset("bed_view.css"),
+                 web_asset("plan_view.css")};
+  page.scripts = {bed::web_asset("common.js"), bed::web_asset("bed_view.js"),
+                  web_asset("scene3d.js"), web_asset("flat.js"), web_asset("plan_view.js")};
   page.body = "<div id=\"app\"></div>";
   page.data = std::move(data.blocks);
   const fs::path path = dir / "index.html";

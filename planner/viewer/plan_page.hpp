@@ -38,6 +38,10 @@ struct PlanPageData {
 // `dir` is not a folder.
 PlanPageData collect_plan_page(const std::filesystem::path& dir);
 
+// The pieces' knitout sources embedded in the page, at most (bytes before
+// compression): a piece past it has its bed view with line numbers only.
+inline constexpr std::size_t kMaxPageSourceBytes = 24u << 20;
+
 struct PlanPageSummary {
   std::size_t bytes = 0;  // size of index.html
   int seams = 0;          // seams (or cut-arcs, before the schedule) shown

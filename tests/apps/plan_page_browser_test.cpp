@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -108,6 +109,32 @@ TEST_F(PlanPageBrowserTest, WithoutWebGlTheCanvasDrawsIt) {
   const Image shot = browser->screenshot();
   const std::uint32_t colour = seams.front().at("label") == "sew" ? 0x1f9d55 : 0xd64545;
   EXPECT_GT(shot.count_near(colour, 24), 200u);
+  EXPECT_TRUE(browser->console_errors().empty()) << errors_of(*browser);
+}
+
+// The Pieces tab shows piece 1 on the needle bed as the interactive bed
+// view: a sweep scrubbed to shows its own line of pieces/piece-1.k.
+TEST_F(PlanPageBrowserTest, ThePiecesTabScrubsThroughAPiecesKnitout) {
+  WEARKNIT_REQUIRE_BROWSER(browser);
+  ASSERT_EQ(browser->open(file_url(*dir_ / "index.html") + "#pieces"), "1") << errors_of(*browser);
+  json sweeps;
+  for (int i = 0; i < 100 && sweeps.is_null(); ++i) {
+    sweeps = browser->evaluate(
+        "new Promise(r => setTimeout(() => r(window.wkPlanBedView ? "
+        "wkPlanBedView.sweeps() : null), 50))");
+  }
+  ASSERT_TRUE(sweeps.is_number()) << errors_of(*browser);
+  ASSERT_GT(sweeps.get<int>(), 10);
+  const int k = sweeps.get<int>() / 2;
+  browser->evaluate("wkPlanBedView.goToSweep(" + std::to_string(k) + ")");
+  EXPECT_EQ(browser->evaluate("wkPlanBedView.currentSweep()").get<int>(), k);
+  const auto line = browser->evaluate("wkPlanBedView.currentLine()").get<std::size_t>();
+  // The text shown is that line of the piece's file.
+  std::ifstream in(*dir_ / "pieces" / "piece-1.k");
+  std::string text;
+  for (std::size_t n = 1; n <= line && std::getline(in, text); ++n) {
+  }
+  EXPECT_EQ(browser->evaluate("wkPlanBedView.currentSourceText()").get<std::string>(), text);
   EXPECT_TRUE(browser->console_errors().empty()) << errors_of(*browser);
 }
 

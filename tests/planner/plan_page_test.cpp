@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -105,7 +106,15 @@ TEST_F(PlanPageTest, SeamsMatchTheAssemblyGuide) {
   for (const json& piece : page.meta.at("pieces")) {
     EXPECT_TRUE(piece.at("figures").contains("passes"));
     EXPECT_TRUE(piece.at("figures").contains("estimated_knit_time_s"));
-    EXPECT_TRUE(piece.contains("bed_svg"));
+    // Each piece's knitout as the bed view's timeline, with its source.
+    ASSERT_TRUE(piece.contains("bed_timeline"));
+    ASSERT_TRUE(piece.contains("bed_source"));
+    const auto has_block = [&](const std::string& id) {
+      return std::any_of(page.blocks.begin(), page.blocks.end(),
+                         [&](const auto& block) { return block.id == id; });
+    };
+    EXPECT_TRUE(has_block(piece["bed_timeline"].get<std::string>()));
+    EXPECT_TRUE(has_block(piece["bed_source"].get<std::string>()));
   }
 }
 

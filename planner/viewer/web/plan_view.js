@@ -289,7 +289,10 @@ wk.start(async function main() {
 
   // ---- Pieces -----------------------------------------------------------------
   const piecesPane = wk.el("section", { class: "plan-pane pad" });
-  addTab("Pieces", "pieces", piecesPane);
+  // The first piece's bed view is made when the tab is first shown.
+  addTab("Pieces", "pieces", piecesPane, () => {
+    if (!bedShown && pieces.length) bedShown = showBed(0);
+  });
   const bedBox = wk.el("div", { class: "bed-box" });
   if (pieces.length) {
     const table = wk.el("table", { class: "wk-table pieces" },
@@ -314,8 +317,23 @@ wk.start(async function main() {
     piecesPane.append(wk.el("p", { class: "wk-muted" }, "No pieces yet: the folder has no schedule."));
   }
   const bedUrls = {};
-  async function showBed(k) {
+  let bedView = null;
+  let bedShown = null;
+  let showBed = async function (k) {
     const p = pieces[k];
+    if (bedView) {
+      bedView.destroy();
+      bedView = null;
+    }
+    if (p.bed_timeline) {
+      bedBox.replaceChildren(wk.el("div", { class: "wk-muted" }, "piece " + p.number + " on the needle bed (pieces/piece-" + p.number + ".k" + (p.bed_source ? "" : "; its source is not in the page, line numbers only") + ")"));
+      const [bytes, source] = await Promise.all([wk.dataBytes(p.bed_timeline), p.bed_source ? wk.dataBytes(p.bed_source) : Promise.resolve(null)]);
+      const box = wk.el("div", { class: "plan-bed" });
+      bedBox.append(box);
+      bedView = wk.mountBedView(box, bytes, source);
+      window.wkPlanBedView = bedView;
+      return;
+    }
     bedBox.replaceChildren(wk.el("div", { class: "wk-muted" }, "piece " + p.number + " on the needle bed (pieces/piece-" + p.number + ".svg)"));
     if (!p.bed_svg) {
       bedBox.append(wk.el("p", { class: "wk-muted" }, "no bed view in the folder"));
@@ -327,7 +345,9 @@ wk.start(async function main() {
     }
     bedBox.append(wk.el("img", { src: bedUrls[k], alt: "piece " + p.number + " on the needle bed", class: "bed-img" }));
   }
-  if (pieces.length) showBed(0);
+  // Errors of an asynchronous bed view are shown on the page.
+  const showBedReported = showBed;
+  showBed = (k) => showBedReported(k).catch((error) => wk.showError("wearknit: bed view: " + (error && error.message ? error.message : error)));
 
   // ---- Report -----------------------------------------------------------------
   const reportPane = wk.el("section", { class: "plan-pane pad" });
