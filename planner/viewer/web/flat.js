@@ -117,7 +117,7 @@ wk.FlatView = class {
     for (const i of order) {
       const seam = this.seams[i];
       const on = i === this.selected;
-      const colour = seam.label === "lace" ? lace : sew;
+      const colour = seam.labelled === false ? "#7a8191" : seam.label === "lace" ? lace : sew;
       for (const side of seam.sides) {
         const f = side.flat;
         if (!f.length) continue;

@@ -23,6 +23,8 @@ wk.start(async function main() {
   const style = getComputedStyle(document.documentElement);
   const css = (name, fallback) => style.getPropertyValue(name).trim() || fallback;
   const sewCss = css("--sew", "#1f9d55"), laceCss = css("--lace", "#d64545");
+  // A seam's colour: sew, lace, or grey before the wearability stage has labelled it.
+  const seamCss = (s) => (s.labelled === false ? "#7a8191" : s.label === "lace" ? laceCss : sewCss);
   const seams = meta.seams || [];
   const pieces = meta.pieces || [];
   const report = meta.report || {};
@@ -35,8 +37,10 @@ wk.start(async function main() {
   if (meta.garment) summary.push(wk.fmt(meta.garment.faces) + " " + (meta.garment.kind === "stitch mesh" ? "stitches" : "faces"));
   if (pieces.length) summary.push(pieces.length + " piece" + (pieces.length === 1 ? "" : "s"));
   if (seams.length) {
-    const laced = seams.filter((s) => s.label === "lace").length;
-    summary.push(seams.length + " " + seamWord + "s (" + (seams.length - laced) + " sew, " + laced + " lace)");
+    const open = seams.filter((s) => s.labelled === false).length;
+    const laced = seams.filter((s) => s.labelled !== false && s.label === "lace").length;
+    const sewn = seams.length - laced - open;
+    summary.push(seams.length + " " + seamWord + "s (" + sewn + " sew, " + laced + " lace" + (open ? ", " + open + " not labelled: no wearability stage" : "") + ")");
   }
   app.append(wk.el("header", { class: "wk-top" },
     wk.el("h1", {}, "wearknit plan: " + meta.folder),
@@ -117,11 +121,11 @@ wk.start(async function main() {
       }
     }
     scene.seams = seams.map((s, i) => {
-      const css = s.label === "lace" ? laceCss : sewCss;
+      const css = seamCss(s);
       return { index: i, colour: wk.rgb(css), css, segments: Float32Array.from(s.p3 || []) };
     });
     scene.labels = seams.filter((s) => s.at).map((s) => ({
-      index: seams.indexOf(s), text: String(s.number), colour: s.label === "lace" ? laceCss : sewCss,
+      index: seams.indexOf(s), text: String(s.number), colour: seamCss(s),
       at: s.at.slice(0, 3), normal: s.at.slice(3, 6),
     }));
     scene.showSeams = true;
