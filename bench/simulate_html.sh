@@ -43,11 +43,20 @@ if [ -z "$probe" ]; then
   echo "browser_probe not built (ninja -C build browser_probe): page-interactive time not measured"
   exit 0
 fi
+echo "page                   interactive_s  data_s  view_s  sweeps  redraw_ms  go_to_sweep_ms"
 for input in "${inputs[@]}"; do
   page=$WORK/$(basename "$input" .k).html
-  echo "== $(basename "$page") in headless Chromium"
   "$probe" "file://$page" "wkBedTimings" "wkBedView.sweeps()" \
     "(() => { const t = performance.now(); wkBedView.redraw(); return performance.now() - t; })()" \
-    "(() => { const t = performance.now(); wkBedView.goToSweep(Math.floor(wkBedView.sweeps() / 2)); return [wkBedView.currentLine(), wkBedView.currentSourceText(), performance.now() - t]; })()" ||
-    echo "browser_probe failed (exit $?)"
+    "(() => { const t = performance.now(); wkBedView.goToSweep(Math.floor(wkBedView.sweeps() / 2)); return [wkBedView.currentLine(), wkBedView.currentSourceText(), performance.now() - t]; })()" \
+    >"$WORK/probe.json" || { echo "browser_probe failed (exit $?)"; cat "$WORK/probe.json"; continue; }
+  python3 - "$WORK/probe.json" "$(basename "$page")" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+if r.get("ready") != "1" or "error" in r or r["console_errors"]:
+    print(sys.argv[2], "failed:", r.get("error"), r["console_errors"]); sys.exit(0)
+t, sweeps, redraw, jump = (v["value"] for v in r["values"])
+print(f"{sys.argv[2]:<22} {r['interactive_s']:13.2f} {t['data_ms'] / 1000:7.2f} {t['mount_ms'] / 1000:7.2f}"
+      f" {sweeps:7d} {redraw:10.1f} {jump[2]:15.1f}")
+PY
 done
