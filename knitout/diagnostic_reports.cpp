@@ -8,6 +8,29 @@ namespace knitout {
 
 namespace {
 
+// GitHub workflow commands: data escapes %, CR, LF; properties also : and ,.
+std::string github_escape(std::string_view text, bool property) {
+  std::string out;
+  for (char c : text) {
+    if (c == '%') {
+      out += "%25";
+    } else if (c == '\r') {
+      out += "%0D";
+    } else if (c == '\n') {
+      out += "%0A";
+    } else if (property && c == ':') {
+      out += "%3A";
+    } else if (property && c == ',') {
+      out += "%2C";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string xml_escape(std::string_view text) {
   std::string out;
   for (char c : text) {
@@ -38,29 +61,6 @@ std::string xml_escape(std::string_view text) {
   }
   return out;
 }
-
-// GitHub workflow commands: data escapes %, CR, LF; properties also : and ,.
-std::string github_escape(std::string_view text, bool property) {
-  std::string out;
-  for (char c : text) {
-    if (c == '%') {
-      out += "%25";
-    } else if (c == '\r') {
-      out += "%0D";
-    } else if (c == '\n') {
-      out += "%0A";
-    } else if (property && c == ':') {
-      out += "%3A";
-    } else if (property && c == ',') {
-      out += "%2C";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
-}  // namespace
 
 void print_github(std::ostream& out, const std::vector<FileDiagnostics>& results, bool werror) {
   for (const FileDiagnostics& r : results) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "knitout/diagnostic.hpp"
@@ -24,6 +25,10 @@ struct FileDiagnostics {
   // With `werror`, warnings fail the file too.
   bool fails(bool werror) const { return errors > 0 || (werror && warnings > 0); }
 };
+
+// `text` with & < > " ' escaped and control characters other than tab and
+// newline replaced by '?': safe in XML 1.0 and in HTML text and attributes.
+std::string xml_escape(std::string_view text);
 
 // `machine` names the profile the files were checked on.
 void print_junit(std::ostream& out, const std::vector<FileDiagnostics>& results, bool werror,

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "knitout/diagnostic_reports.hpp"
+
 namespace bed {
 
 namespace {
@@ -72,27 +74,7 @@ std::string gzip_base64(std::string_view bytes) {
 }
 
 std::string html_escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
+  return knitout::xml_escape(text);
 }
 
 void write_page(std::ostream& out, const Page& page) {

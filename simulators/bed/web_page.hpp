@@ -29,7 +29,7 @@ struct Page {
 // `bytes` gzip-compressed (zlib's deflate at level 6), then base64-encoded.
 std::string gzip_base64(std::string_view bytes);
 
-// `text` with & < > " escaped for HTML text and attribute values.
+// `text` escaped for HTML text and attribute values (knitout::xml_escape).
 std::string html_escape(std::string_view text);
 
 // Writes the page as one HTML document.
