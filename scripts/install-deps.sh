@@ -18,6 +18,10 @@ PACKAGES=(
   nodejs
   chromium
   time
+  # tests/slurm/cluster.sh's single-node Slurm; it runs its own daemons from
+  # its own folder, not the packages' services (which do not start without
+  # /etc/slurm/slurm.conf, or without an init here).
+  slurmctld slurmd slurm-client munge
 )
 
 missing=()
