@@ -65,6 +65,8 @@ const std::vector<Verb>& verbs() {
       {"view", "view DIR",
        "write DIR/index.html: the plan in a browser (3D, seams, pieces, figures), offline",
        run_view},
+      {"batch", "batch MANIFEST.csv -o DIR [--jobs N] [--threads T]",
+       "a plan per manifest row, --jobs at a time; summary, resume (docs/batch.md)", run_batch},
   };
   return kVerbs;
 }

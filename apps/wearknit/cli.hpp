@@ -103,6 +103,7 @@ int run_stitch_mesh(const std::vector<std::string>& args, Context& context);
 int run_plan(const std::vector<std::string>& args, Context& context);
 int run_assembly(const std::vector<std::string>& args, Context& context);
 int run_view(const std::vector<std::string>& args, Context& context);
+int run_batch(const std::vector<std::string>& args, Context& context);
 // "open: DIR/index.html  (size; pieces, seams)": the line `view`, `plan` and
 // `demo` print for the plan page (planner/viewer/plan_page.hpp).
 void print_page_line(const std::string& dir, const planner::viewer::PlanPageSummary& summary,

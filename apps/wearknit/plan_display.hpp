@@ -2,9 +2,12 @@
 // display, the summary, the failure report and sending the pieces.
 #pragma once
 
+#include <boost/program_options.hpp>
+#include <cstdint>
 #include <string>
 
 #include "apps/wearknit/cli.hpp"
+#include "apps/wearknit/stage_options.hpp"
 #include "planner/plan.hpp"
 
 namespace wearknit::cli {
@@ -13,6 +16,23 @@ struct PlanRunOptions {
   std::string send_uri;  // empty: do not send
   bool quiet = false;    // no progress display and no summary
 };
+
+// Everything `wearknit plan` reads from its command line.
+struct PlanVerbOptions {
+  planner::PlanInputs inputs;
+  std::string dir;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  PlanRunOptions run;
+  CutOptions cut;
+  StitchMeshOptions stitch;
+  WearabilityOptions wear;
+  ScheduleOptions schedule;
+};
+
+// The options of `wearknit plan`, bound to `v`; `wearknit batch` checks its
+// manifest's columns against the same table.
+void add_plan_options(boost::program_options::options_description& options, PlanVerbOptions& v);
 
 // Runs the plan into `dir`. On a terminal (and without quiet) one status
 // line is redrawn a few times a second and a line is printed as each stage

@@ -15,41 +15,46 @@ namespace wearknit::cli {
 
 namespace po = boost::program_options;
 
-int run_plan(const std::vector<std::string>& args, Context& context) {
-  planner::PlanInputs inputs;
-  std::string dir;
-  std::uint64_t seed = 1;
-  int threads = 0;
-  PlanRunOptions run;
-  CutOptions cut;
-  StitchMeshOptions stitch;
-  WearabilityOptions wear;
-  ScheduleOptions schedule;
-  po::options_description options("options");
-  options.add_options()("garment", po::value<std::string>(&inputs.garment)->required(),
+void add_plan_options(po::options_description& options, PlanVerbOptions& v) {
+  options.add_options()("garment", po::value<std::string>(&v.inputs.garment)->required(),
                         "garment surface (OBJ, OFF, PLY or STL)")(
-      "wearer", po::value<std::string>(&inputs.wearer)->required(),
+      "wearer", po::value<std::string>(&v.inputs.wearer)->required(),
       "the rigid object that wears it (same formats and units as the garment)")(
-      "output,o", po::value<std::string>(&dir)->required(), "write the plan folder here")(
-      "seed", po::value<std::uint64_t>(&seed)->default_value(1),
+      "output,o", po::value<std::string>(&v.dir)->required(), "write the plan folder here")(
+      "seed", po::value<std::uint64_t>(&v.seed)->default_value(1),
       "seed of every stochastic stage (cut, wearability, schedule)")(
-      "units", po::value<std::string>(&inputs.units)->default_value("mm"),
+      "units", po::value<std::string>(&v.inputs.units)->default_value("mm"),
       "unit of both files' coordinates: mm, cm or m")(
-      "scale", po::value<double>(&inputs.scale)->default_value(1.0),
+      "scale", po::value<double>(&v.inputs.scale)->default_value(1.0),
       "multiply both files' coordinates by this")(
-      "size-mm", po::value<double>(&inputs.size_mm),
+      "size-mm", po::value<double>(&v.inputs.size_mm),
       "instead of --scale: scale both so the garment's longest side is this many mm")(
-      "send", po::value<std::string>(&run.send_uri),
+      "send", po::value<std::string>(&v.run.send_uri),
       "send every piece's DAT to this machine as `wearknit send` does (tcp://, serial:, usb://, "
       "dir:PATH, loopback:)")("no-pictures", "draw no pictures (cut, stitch mesh)")(
       "restart",
       "wearability: ignore the tests of a plan cut short (kept in DIR/wearability.journal) and "
       "start again")("quiet,q", "no progress display and no summary");
-  add_cut_options(options, cut);
-  add_stitch_mesh_options(options, stitch);
-  add_wearability_options(options, wear, "wear-trials");
-  add_schedule_options(options, schedule);
-  add_threads_option(options, threads);
+  add_cut_options(options, v.cut);
+  add_stitch_mesh_options(options, v.stitch);
+  add_wearability_options(options, v.wear, "wear-trials");
+  add_schedule_options(options, v.schedule);
+  add_threads_option(options, v.threads);
+}
+
+int run_plan(const std::vector<std::string>& args, Context& context) {
+  PlanVerbOptions v;
+  planner::PlanInputs& inputs = v.inputs;
+  std::string& dir = v.dir;
+  std::uint64_t& seed = v.seed;
+  int& threads = v.threads;
+  PlanRunOptions& run = v.run;
+  CutOptions& cut = v.cut;
+  StitchMeshOptions& stitch = v.stitch;
+  WearabilityOptions& wear = v.wear;
+  ScheduleOptions& schedule = v.schedule;
+  po::options_description options("options");
+  add_plan_options(options, v);
   po::positional_options_description positional;
   positional.add("garment", 1);
   po::variables_map values;
