@@ -1,0 +1,200 @@
+// wearknit batch (apps/wearknit/batch.hpp, verb_batch.cpp): the manifest is
+// read strictly, with the file and line of every problem; a batch runs its
+// rows, a failed row does not stop the others, the summary says which
+// passed; run again, it runs only the rows not done with the same inputs,
+// also after it was killed midway.
+#include "apps/wearknit/batch.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "planner/mesh/mesh_io.hpp"
+#include "planner/mesh/shapes.hpp"
+#include "tests/test_support.hpp"
+
+namespace wearknit::test {
+namespace {
+
+namespace fs = std::filesystem;
+using cli::read_manifest;
+using nlohmann::json;
+
+fs::path write(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string all;
+  for (const std::string& l : lines) all += l + "\n";
+  return all;
+}
+
+TEST(BatchManifestTest, ReadsRowsWithQuotedFieldsAndPlanOptions) {
+  TempDir dir("batch-manifest");
+  const fs::path m = write(dir.path() / "m.csv",
+                           "name,garment,wearer,size_mm,pattern,no_pictures\r\n"
+                           "a,g.obj,/abs/w.obj,100,seed,\r\n"
+                           "\r\n"
+                           "\"b.2\",\"dir, with comma/g.obj\",w.obj,,,true\r\n");
+  std::vector<std::string> problems;
+  const auto manifest = read_manifest(m, problems);
+  ASSERT_TRUE(manifest) << joined(problems);
+  ASSERT_EQ(manifest->rows.size(), 2u);
+  const cli::BatchRow& a = manifest->rows[0];
+  EXPECT_EQ(a.name, "a");
+  EXPECT_EQ(a.line, 2);
+  EXPECT_EQ(a.garment_path, fs::absolute(dir.path()) / "g.obj");
+  EXPECT_EQ(a.wearer_path, fs::path("/abs/w.obj"));
+  ASSERT_EQ(a.options.size(), 2u);
+  EXPECT_EQ(a.options[0], (std::pair<std::string, std::string>{"size-mm", "100"}));
+  EXPECT_EQ(a.options[1], (std::pair<std::string, std::string>{"pattern", "seed"}));
+  const cli::BatchRow& b = manifest->rows[1];
+  EXPECT_EQ(b.line, 4);
+  EXPECT_EQ(b.garment, "dir, with comma/g.obj");
+  // A flag column is given without a value.
+  const auto args = cli::plan_arguments(b, "/out", 3);
+  const std::vector<std::string> expected = {
+      "plan",      (fs::absolute(dir.path()) / "dir, with comma/g.obj").string(),
+      "--wearer",  (fs::absolute(dir.path()) / "w.obj").string(),
+      "-o",        "/out/b.2",
+      "--threads", "3",
+      "--quiet",   "--no-pictures"};
+  EXPECT_EQ(args, expected);
+}
+
+TEST(BatchManifestTest, EveryProblemNamesTheFileAndLine) {
+  TempDir dir("batch-manifest");
+  std::vector<std::string> problems;
+  const fs::path header = write(dir.path() / "h.csv", "name,garment,sise_mm,threads\n");
+  EXPECT_FALSE(read_manifest(header, problems));
+  const std::string where = header.string() + ":1: error: ";
+  EXPECT_EQ(joined(problems),
+            where + "column 'sise_mm' is not an option of wearknit plan (--sise-mm)\n" + where +
+                "column 'threads': the batch sets --threads itself (--jobs and --threads set "
+                "the threads)\n" +
+                where + "no column 'wearer' (the header needs name, garment and wearer)\n");
+
+  problems.clear();
+  const fs::path rows = write(dir.path() / "r.csv",
+                              "name,garment,wearer\n"
+                              "a,g,w\n"
+                              "a,g,w\n"
+                              "../up,g,w\n"
+                              "c,g\n"
+                              "d,,w\n"
+                              "\"e,g,w\n");
+  EXPECT_FALSE(read_manifest(rows, problems));
+  const std::string at = rows.string() + ":";
+  EXPECT_EQ(joined(problems), at + "3: error: the name 'a' is used by an earlier row\n" + at +
+                                  "4: error: the name starts with '.'\n" + at +
+                                  "5: error: the row has 2 fields; the header has 3\n" + at +
+                                  "6: error: row 'd' has no garment\n" + at +
+                                  "7: error: a quoted field is not closed\n");
+
+  problems.clear();
+  EXPECT_FALSE(read_manifest(write(dir.path() / "e.csv", "name,garment,wearer\n"), problems));
+  EXPECT_EQ(problems, std::vector<std::string>{(dir.path() / "e.csv").string() +
+                                               ": error: the manifest has a header but no rows"});
+}
+
+// The demo's shapes at two sizes and a row whose garment does not exist.
+class BatchRunTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::ofstream wearer(dir_.path() / "wearer.obj");
+    planner::write_obj(wearer, planner::quad_ellipsoid(25, 1.8, 6));
+    std::ofstream garment(dir_.path() / "garment.obj");
+    planner::write_obj(garment, planner::quad_ellipsoid(26.5, 1.75, 6));
+    manifest_ = write(dir_.path() / "m.csv",
+                      "name,garment,wearer,size_mm,wear_trials\n"
+                      "small,garment.obj,wearer.obj,40,1\n"
+                      "large,garment.obj,wearer.obj,60,1\n"
+                      "missing,nothere.obj,wearer.obj,60,1\n");
+    out_ = dir_.path() / "out";
+  }
+  json summary() {
+    std::ifstream in(out_ / "batch.json");
+    return json::parse(in);
+  }
+  std::string status(const json& s, const std::string& name) {
+    for (const json& row : s["rows"])
+      if (row["name"] == name) return row["status"];
+    return "absent";
+  }
+  TempDir dir_{"batch-run"};
+  fs::path manifest_;
+  fs::path out_;
+};
+
+TEST_F(BatchRunTest, AFailedRowDoesNotStopTheOthersAndResumeRunsOnlyWhatIsNotDone) {
+  const std::string command =
+      "batch '" + manifest_.string() + "' -o '" + out_.string() + "' --jobs 2";
+  auto r = run_wearknit(command);
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  json s = summary();
+  EXPECT_EQ(status(s, "small"), "ok");
+  EXPECT_EQ(status(s, "large"), "ok");
+  EXPECT_EQ(status(s, "missing"), "failed");
+  for (const json& row : s["rows"]) {
+    if (row["name"] == "missing") {
+      EXPECT_NE(row["error"].get<std::string>().find("nothere.obj: error: [P001]"),
+                std::string::npos);
+    } else {
+      EXPECT_GT(row["summary"]["stitches"].get<int>(), 100);
+      EXPECT_TRUE(fs::exists(out_ / row["page"].get<std::string>()));
+    }
+  }
+  std::ifstream csv(out_ / "batch.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("name,status,error,cut_s,wearability_s,", 0), 0u) << header;
+  EXPECT_TRUE(fs::exists(out_ / "index.html"));
+
+  // Again: the two plans that passed are not run again; the failed row is.
+  r = run_wearknit(command);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("skip small: done with the same inputs"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("skip large: done with the same inputs"), std::string::npos);
+  EXPECT_NE(r.out.find("missing failed"), std::string::npos);
+
+  // A changed option runs its row again.
+  write(manifest_,
+        "name,garment,wearer,size_mm,wear_trials\n"
+        "small,garment.obj,wearer.obj,40,1\n"
+        "large,garment.obj,wearer.obj,60,2\n");
+  r = run_wearknit(command);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("skip small"), std::string::npos);
+  EXPECT_NE(r.out.find("large ok"), std::string::npos) << r.out;
+}
+
+TEST_F(BatchRunTest, KilledMidwayItFinishesTheRestAndKeepsWhatWasDone) {
+  write(manifest_,
+        "name,garment,wearer,size_mm,wear_trials\n"
+        "small,garment.obj,wearer.obj,40,1\n"
+        "large,garment.obj,wearer.obj,60,1\n");
+  const std::string command =
+      "batch '" + manifest_.string() + "' -o '" + out_.string() + "' --jobs 1";
+  // Killed once the first row's plan has begun its log: the row running then
+  // dies with the batch and is left unfinished.
+  ASSERT_TRUE(run_wearknit_and_kill(command, out_ / "small" / "plan.log", 1));
+  std::ifstream in(out_ / ".batch" / "small.json");
+  const json small = json::parse(in);
+  EXPECT_EQ(small["status"], "running");
+  const auto r = run_wearknit(command);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("small ok"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("large ok"), std::string::npos) << r.out;
+  const json s = summary();
+  EXPECT_EQ(status(s, "small"), "ok");
+  EXPECT_EQ(status(s, "large"), "ok");
+}
+
+}  // namespace
+}  // namespace wearknit::test
