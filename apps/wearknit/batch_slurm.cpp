@@ -416,7 +416,13 @@ std::string slurm_status(const std::string& dir, std::ostream& out,
   out << "array job " << array_id << ": " << rows << " tasks, " << pending << " pending, "
       << running << " running, " << completed + failed + gone << " done (" << completed
       << " completed, " << failed << " failed";
-  for (const auto& [state, count] : failures) out << ", " << count << ' ' << state;
+  // The scheduler's own words for the tasks that did not complete, when more
+  // than one kind (FAILED, TIMEOUT, NODE_FAIL, CANCELLED, ...).
+  if (failures.size() > 1) {
+    for (const auto& [state, count] : failures) out << ", " << count << ' ' << state;
+  } else if (failures.size() == 1) {
+    out << ": " << failures.begin()->first;
+  }
   if (gone > 0) {
     out << ", " << gone << " ended and no longer listed"
         << (have_sacct ? "" : " (no accounting here: see the rows)");

@@ -11,15 +11,19 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <deque>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <thread>
 
 #include "apps/wearknit/batch.hpp"
+#include "apps/wearknit/batch_slurm.hpp"
 #include "apps/wearknit/cli.hpp"
 
 namespace wearknit::cli {
@@ -135,6 +139,7 @@ int run_batch(const std::vector<std::string>& args, Context& context) {
   int jobs = cores;
   int threads = 0;
   int row_index = -1;
+  SlurmOptions slurm;
   po::options_description options("options");
   options.add_options()("manifest", po::value<std::string>(&manifest_path),
                         "the manifest: CSV with a header (docs/batch.md)")(
@@ -146,12 +151,52 @@ int run_batch(const std::vector<std::string>& args, Context& context) {
       "row", po::value<int>(&row_index),
       "run only this row (0-based; what a Slurm array task does)")(
       "collect", "write the summary from the rows' states, running nothing")(
+      "slurm", "submit the batch to Slurm: a job array, one task per row, and a collect job")(
+      "partition", po::value<std::string>(&slurm.partition), "--slurm: sbatch --partition")(
+      "time", po::value<std::string>(&slurm.time_limit), "--slurm: sbatch --time, per row")(
+      "cpus-per-task", po::value<std::string>(&slurm.cpus_per_task),
+      "--slurm: sbatch --cpus-per-task (and each plan's --threads)")(
+      "mem", po::value<std::string>(&slurm.mem), "--slurm: sbatch --mem, per row")(
+      "status",
+      "report a batch folder's Slurm submission and its rows: wearknit batch --status DIR")(
       "quiet,q", "print only failures and the summary line");
   po::positional_options_description positional;
   positional.add("manifest", 1);
   po::variables_map values;
   if (auto code = parse_options(args, *find_verb("batch"), options, positional, values, context)) {
     return *code;
+  }
+  if (values.count("status") != 0) {
+    // The batch folder is the positional argument, or -o.
+    const std::string status_dir = !dir_text.empty() ? dir_text : manifest_path;
+    if (status_dir.empty()) {
+      context.err << "wearknit batch: --status takes the batch folder: wearknit batch --status "
+                     "DIR\n";
+      return kExitUsage;
+    }
+    const fs::path dir = fs::absolute(status_dir);
+    std::vector<std::string> problems;
+    std::optional<Manifest> manifest;
+    std::ifstream recorded(batch_state_dir(dir) / "slurm.json");
+    if (recorded) {
+      const auto value = nlohmann::json::parse(recorded, nullptr, false);
+      if (value.is_object() && value.contains("manifest")) {
+        manifest = read_manifest(value["manifest"].get<std::string>(), problems);
+      }
+    }
+    SlurmRowStatus rows = nullptr;
+    if (manifest) {
+      rows = [&](int i) {
+        const auto state = read_row_state(dir, manifest->rows[static_cast<std::size_t>(i)].name);
+        return state ? state->status : std::string();
+      };
+    }
+    const std::string failure = slurm_status(dir.string(), context.out, rows);
+    if (!failure.empty()) {
+      context.err << dir.string() << ": error: " << failure << '\n';
+      return kExitUsage;
+    }
+    return kExitOk;
   }
   if (manifest_path.empty() || dir_text.empty()) {
     context.err << "wearknit batch: give the manifest and the batch folder: wearknit batch "
@@ -183,6 +228,37 @@ int run_batch(const std::vector<std::string>& args, Context& context) {
     context.err << "wearknit batch: --row " << row_index << ": the manifest has " << total
                 << " rows (0 to " << total - 1 << ")\n";
     return kExitUsage;
+  }
+
+  if (values.count("slurm") != 0) {
+    slurm.wearknit = self_binary();
+    slurm.manifest = fs::absolute(manifest_path).string();
+    slurm.dir = dir.string();
+    slurm.rows = static_cast<int>(total);
+    // --jobs throttles the array; each task's plan gets --threads, else the
+    // CPUs Slurm gives the task (--cpus-per-task), else one.
+    slurm.throttle = jobs;
+    if (!values["threads"].defaulted()) {
+      slurm.threads = threads;
+    } else {
+      slurm.threads = std::max(1, std::atoi(slurm.cpus_per_task.c_str()));
+    }
+    std::string array_id, collect_id;
+    const std::string failure = slurm_submit(slurm, &array_id, &collect_id);
+    if (!array_id.empty()) {
+      context.out << "submitted job array " << array_id << " (" << total << " rows"
+                  << (slurm.throttle > 0
+                          ? ", at most " + std::to_string(slurm.throttle) + " at once"
+                          : std::string())
+                  << ")";
+      if (!collect_id.empty()) context.out << " and collect job " << collect_id;
+      context.out << "; wearknit batch --status " << dir.string() << '\n';
+    }
+    if (!failure.empty()) {
+      context.err << "wearknit batch: " << failure << '\n';
+      return kExitUsage;
+    }
+    return kExitOk;
   }
 
   // One batch at a time runs the whole folder; an array task locks its row.
@@ -270,6 +346,9 @@ int run_batch(const std::vector<std::string>& args, Context& context) {
   context.out << "batch: " << total << " rows, " << ok << " ok, " << total - ok
               << " not ok; summary " << (dir / "batch.csv").string() << ", open "
               << (dir / "index.html").string() << '\n';
+  // The collect job has done its work once the summary is written; whether
+  // every row passed is in the summary and --status.
+  if (values.count("collect") != 0) return kExitOk;
   return all_ok ? kExitOk : kExitInvalid;
 }
 

@@ -247,11 +247,86 @@ TEST(BatchSlurmClusterTest, ArrayRunsEveryRowThrottledAndThenTheCollectJob) {
 
   const std::string end = status();
   EXPECT_TRUE(contains(end, "array job " + array_id +
-                                ": 4 tasks, 0 pending, 0 running, 4 done (3 completed, 1 failed, "
-                                "1 FAILED)\n"))
+                                ": 4 tasks, 0 pending, 0 running, 4 done (3 completed, 1 failed: "
+                                "FAILED)\n"))
       << end;
   EXPECT_TRUE(contains(end, "collect job " + collect_id + ": COMPLETED\n")) << end;
   EXPECT_TRUE(contains(end, "rows: 3 ok, 1 failed, 0 unfinished, 0 not run\n")) << end;
+  ::unsetenv("SLURM_CONF");
+}
+
+// The real `wearknit batch --slurm` on the demo's shapes: the rows that run
+// give pieces byte for byte those of a local batch of the same manifest, the
+// row with a missing input fails cleanly, the collect job writes the
+// summary; a task cancelled midway (scancel) is run again by the next batch,
+// which skips the rows done.
+TEST(BatchSlurmClusterTest, TheSameManifestThroughSlurmGivesTheSamePieces) {
+  TempDir root("wearknit-slurm-batch");
+  Cluster cluster(root.path() / "cluster");
+  if (cluster.result().exit_code == 77 || !cluster.result().error.empty()) {
+    GTEST_SKIP() << "no single-node Slurm here: " << cluster.result().err << cluster.result().error;
+  }
+  ASSERT_EQ(cluster.result().exit_code, 0) << cluster.result().err;
+  ::setenv("SLURM_CONF", cluster.slurm_conf().c_str(), 1);
+
+  // The demo's shapes, written by the demo itself.
+  const fs::path demo = root.path() / "demo";
+  ASSERT_EQ(test::run_wearknit("demo -q -o '" + demo.string() + "'").exit_code, 0);
+  const fs::path manifest = root.path() / "m.csv";
+  write_file(manifest,
+             "name,garment,wearer,size_mm,wear_trials\n"
+             "small,demo/input/garment.obj,demo/input/wearer.obj,40,1\n"
+             "large,demo/input/garment.obj,demo/input/wearer.obj,55,1\n"
+             "missing,nothere.obj,demo/input/wearer.obj,40,1\n");
+  const fs::path local = root.path() / "local";
+  const fs::path remote = root.path() / "slurm";
+  EXPECT_EQ(test::run_wearknit("batch '" + manifest.string() + "' -o '" + local.string() +
+                               "' --jobs 2 --threads 1 -q")
+                .exit_code,
+            1);
+
+  // Submitted, then the large row's task cancelled as soon as it runs.
+  const std::string submit =
+      "batch '" + manifest.string() + "' -o '" + remote.string() + "' --slurm --jobs 2";
+  auto r = test::run_wearknit(submit);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string array_id = r.out.substr(r.out.find("job array ") + 10);
+  const std::string id = array_id.substr(0, array_id.find(' '));
+  ASSERT_TRUE(wait_for(120, [&] {
+    return read_file(remote / ".batch" / "large.json").find("running") != std::string::npos;
+  }));
+  EXPECT_EQ(run_command({"scancel", id + "_1"}).exit_code, 0);
+  ASSERT_TRUE(wait_for(300, [&] { return fs::exists(remote / "batch.csv"); }));
+  std::string csv = read_file(remote / "batch.csv");
+  EXPECT_TRUE(contains(csv, "\nsmall,ok,")) << csv;
+  EXPECT_TRUE(contains(csv, "\nlarge,unfinished,")) << csv;
+  EXPECT_TRUE(contains(csv, "\nmissing,failed,")) << csv;
+
+  // Submitted again: only the cancelled row and the failed one run.
+  r = test::run_wearknit(submit);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(wait_for(300, [&] {
+    return read_file(remote / "batch.csv").find("\nlarge,ok,") != std::string::npos;
+  }));
+  const std::string second = r.out.substr(r.out.find("job array ") + 10);
+  const std::string log =
+      read_file(remote / ".batch" / ("slurm-" + second.substr(0, second.find(' ')) + "_0.out"));
+  EXPECT_TRUE(contains(log, "skip small: done with the same inputs")) << log;
+  csv = read_file(remote / "batch.csv");
+  EXPECT_TRUE(contains(csv, "\nmissing,failed,")) << csv;
+
+  // Byte for byte the local batch's pieces.
+  for (const char* row : {"small", "large"}) {
+    int pieces = 0;
+    for (const auto& entry : fs::directory_iterator(local / row / "pieces")) {
+      if (entry.path().extension() != ".k") continue;
+      ++pieces;
+      EXPECT_EQ(read_file(entry.path()),
+                read_file(remote / row / "pieces" / entry.path().filename()))
+          << row << " " << entry.path().filename();
+    }
+    EXPECT_GT(pieces, 0) << row;
+  }
   ::unsetenv("SLURM_CONF");
 }
 
