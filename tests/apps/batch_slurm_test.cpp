@@ -274,10 +274,10 @@ TEST(BatchSlurmClusterTest, TheSameManifestThroughSlurmGivesTheSamePieces) {
   ASSERT_EQ(test::run_wearknit("demo -q -o '" + demo.string() + "'").exit_code, 0);
   const fs::path manifest = root.path() / "m.csv";
   write_file(manifest,
-             "name,garment,wearer,size_mm,wear_trials\n"
-             "small,demo/input/garment.obj,demo/input/wearer.obj,40,1\n"
-             "large,demo/input/garment.obj,demo/input/wearer.obj,55,1\n"
-             "missing,nothere.obj,demo/input/wearer.obj,40,1\n");
+             "name,garment,wearer,size_mm,wear_trials,resolution,cloth_vertices\n"
+             "small,demo/input/garment.obj,demo/input/wearer.obj,40,1,32,0\n"
+             "large,demo/input/garment.obj,demo/input/wearer.obj,55,1,32,0\n"
+             "missing,nothere.obj,demo/input/wearer.obj,40,1,32,0\n");
   const fs::path local = root.path() / "local";
   const fs::path remote = root.path() / "slurm";
   EXPECT_EQ(test::run_wearknit("batch '" + manifest.string() + "' -o '" + local.string() +
