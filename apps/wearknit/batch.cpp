@@ -13,6 +13,7 @@
 #include "knitout/diagnostic_reports.hpp"
 #include "knitout/output_file.hpp"
 #include "planner/common/hash.hpp"
+#include "planner/common/json_file.hpp"
 
 namespace wearknit::cli {
 
@@ -97,14 +98,6 @@ std::optional<std::string> read_bytes(const fs::path& path) {
   bytes << in.rdbuf();
   if (in.bad()) return std::nullopt;
   return bytes.str();
-}
-
-std::optional<json> read_json(const fs::path& path) {
-  const auto bytes = read_bytes(path);
-  if (!bytes) return std::nullopt;
-  json value = json::parse(*bytes, nullptr, false);
-  if (value.is_discarded()) return std::nullopt;
-  return value;
 }
 
 // The CSV field for `text`: quoted when it holds a comma, a quote or a line end.
@@ -292,7 +285,8 @@ fs::path batch_state_dir(const fs::path& dir) {
 }
 
 std::optional<RowState> read_row_state(const fs::path& dir, const std::string& name) {
-  const auto value = read_json(batch_state_dir(dir) / (name + ".json"));
+  const auto value =
+      planner::read_json_object_if_any((batch_state_dir(dir) / (name + ".json")).string());
   if (!value || !value->is_object()) return std::nullopt;
   RowState state;
   state.status = value->value("status", "");
@@ -350,7 +344,8 @@ std::string write_batch_summary(const fs::path& dir, const Manifest& manifest, b
     }
     ok = ok && r["status"] == "ok";
     // The plan's own figures.
-    if (const auto plan = read_json(dir / row.name / "plan.json"); plan && plan->contains("plan")) {
+    if (const auto plan = planner::read_json_object_if_any((dir / row.name / "plan.json").string());
+        plan && plan->contains("plan")) {
       const json& p = (*plan)["plan"];
       json stages = json::object();
       for (const json& s : p.value("stages", json::array())) {
@@ -360,7 +355,8 @@ std::string write_batch_summary(const fs::path& dir, const Manifest& manifest, b
       r["total_s"] = p.value("total_s", 0.0);
       r["summary"] = p.value("summary", json::object());
     }
-    if (const auto report = read_json(dir / row.name / "report.json");
+    if (const auto report =
+            planner::read_json_object_if_any((dir / row.name / "report.json").string());
         report && report->contains("assembly")) {
       const json& a = (*report)["assembly"];
       r["seams"] = a.value("seams", json());
