@@ -191,6 +191,25 @@ int run_batch(const std::vector<std::string>& args, Context& context) {
         return state ? state->status : std::string();
       };
     }
+    if (!fs::exists(batch_state_dir(dir) / "slurm.json")) {
+      // A local batch: its rows' states only.
+      if (!fs::is_directory(batch_state_dir(dir))) {
+        context.err << dir.string()
+                    << ": error: not a batch folder (no " + batch_state_dir(dir).string() + ")\n";
+        return kExitUsage;
+      }
+      std::map<std::string, int> counts;
+      for (const auto& entry : fs::directory_iterator(batch_state_dir(dir))) {
+        if (entry.path().extension() != ".json") continue;
+        if (const auto state = read_row_state(dir, entry.path().stem().string())) {
+          ++counts[state->status];
+        }
+      }
+      context.out << "no Slurm submission (a local batch); rows: " << counts["ok"] << " ok, "
+                  << counts["failed"] << " failed, " << counts["running"]
+                  << " running or unfinished\n";
+      return kExitOk;
+    }
     const std::string failure = slurm_status(dir.string(), context.out, rows);
     if (!failure.empty()) {
       context.err << dir.string() << ": error: " << failure << '\n';

@@ -157,6 +157,13 @@ TEST_F(BatchRunTest, AFailedRowDoesNotStopTheOthersAndResumeRunsOnlyWhatIsNotDon
   EXPECT_EQ(header.rfind("name,status,error,cut_s,wearability_s,", 0), 0u) << header;
   EXPECT_TRUE(fs::exists(out_ / "index.html"));
 
+  // --status of a local batch counts its rows.
+  const auto state = run_wearknit("batch --status '" + out_.string() + "'");
+  EXPECT_EQ(state.exit_code, 0) << state.err;
+  EXPECT_EQ(state.out,
+            "no Slurm submission (a local batch); rows: 2 ok, 1 failed, 0 running or "
+            "unfinished\n");
+
   // Again: the two plans that passed are not run again; the failed row is.
   r = run_wearknit(command);
   EXPECT_EQ(r.exit_code, 1);
