@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "apps/wearknit/cli.hpp"
 #include "apps/wearknit/plan_display.hpp"
 #include "knitout/diagnostic_reports.hpp"
 #include "knitout/output_file.hpp"
@@ -91,15 +92,6 @@ std::string now_utc() {
   return text.str();
 }
 
-std::optional<std::string> read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) return std::nullopt;
-  return bytes.str();
-}
-
 // The CSV field for `text`: quoted when it holds a comma, a quote or a line end.
 std::string csv_field(const std::string& text) {
   if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
@@ -122,19 +114,29 @@ std::string number_text(const json& value) {
   return text.str();
 }
 
+// `wearknit plan`'s own table of options, made once: the manifest's columns
+// are checked against it, and it says which options are flags.
+const po::options_description& plan_option_table() {
+  static PlanVerbOptions values;
+  static const po::options_description table = [] {
+    po::options_description plan("plan");
+    add_plan_options(plan, values);
+    return plan;
+  }();
+  return table;
+}
+
 }  // namespace
 
 std::optional<Manifest> read_manifest(const fs::path& path, std::vector<std::string>& problems) {
-  const auto text = read_bytes(path);
+  const auto text = slurp(path.string());
   const std::string where = path.string();
   if (!text) {
     problems.push_back(where + ": error: cannot read the manifest");
     return std::nullopt;
   }
   // The columns `wearknit plan` takes, from its own option table.
-  PlanVerbOptions plan_values;
-  po::options_description plan("plan");
-  add_plan_options(plan, plan_values);
+  const po::options_description& plan = plan_option_table();
   static const std::set<std::string> kSetByBatch = {"output", "threads", "quiet", "send"};
 
   Manifest manifest;
@@ -258,10 +260,7 @@ std::vector<std::string> plan_arguments(const BatchRow& row, const fs::path& dir
     if (value != "true" && value != "yes" && value != "1") {
       args.push_back(value);
     } else {
-      PlanVerbOptions plan_values;
-      po::options_description plan("plan");
-      add_plan_options(plan, plan_values);
-      const po::option_description* d = plan.find_nothrow(option, false);
+      const po::option_description* d = plan_option_table().find_nothrow(option, false);
       if (d != nullptr && d->semantic()->max_tokens() > 0) args.push_back(value);
     }
   }
@@ -271,8 +270,8 @@ std::vector<std::string> plan_arguments(const BatchRow& row, const fs::path& dir
 std::optional<std::uint64_t> row_fingerprint(const BatchRow& row) {
   std::string key = "wearknit-batch-row 1\n";
   for (const auto& [option, value] : row.options) key += option + "=" + value + "\n";
-  const auto garment = read_bytes(row.garment_path);
-  const auto wearer = read_bytes(row.wearer_path);
+  const auto garment = slurp(row.garment_path.string());
+  const auto wearer = slurp(row.wearer_path.string());
   if (!garment || !wearer) return std::nullopt;
   std::uint64_t h = planner::fingerprint(key);
   h = planner::fingerprint(*garment, h);
@@ -310,16 +309,16 @@ std::string write_row_state(const fs::path& dir, const std::string& name, const 
                                         [&](std::ostream& out) { out << value.dump(2) << '\n'; });
 }
 
-bool row_done(const fs::path& dir, const BatchRow& row) {
+bool row_done(const fs::path& dir, const BatchRow& row,
+              const std::optional<std::uint64_t>& fingerprint) {
   const auto state = read_row_state(dir, row.name);
-  if (!state || state->status != "ok") return false;
-  const auto fingerprint = row_fingerprint(row);
-  return fingerprint && *fingerprint == state->fingerprint;
+  return state && state->status == "ok" && fingerprint && *fingerprint == state->fingerprint;
 }
 
-std::string write_batch_summary(const fs::path& dir, const Manifest& manifest, bool* all_ok) {
+std::string write_batch_summary(const fs::path& dir, const Manifest& manifest,
+                                std::size_t* ok_rows) {
   json rows = json::array();
-  bool ok = true;
+  std::size_t ok = 0;
   for (const BatchRow& row : manifest.rows) {
     json r = {
         {"name", row.name}, {"garment", row.garment}, {"wearer", row.wearer}, {"folder", row.name}};
@@ -342,7 +341,7 @@ std::string write_batch_summary(const fs::path& dir, const Manifest& manifest, b
       r["seconds"] = state->seconds;
       if (!state->error.empty()) r["error"] = state->error;
     }
-    ok = ok && r["status"] == "ok";
+    ok += r["status"] == "ok";
     // The plan's own figures.
     if (const auto plan = planner::read_json_object_if_any((dir / row.name / "plan.json").string());
         plan && plan->contains("plan")) {
@@ -366,7 +365,7 @@ std::string write_batch_summary(const fs::path& dir, const Manifest& manifest, b
     if (fs::exists(dir / row.name / "index.html")) r["page"] = row.name + "/index.html";
     rows.push_back(std::move(r));
   }
-  if (all_ok) *all_ok = ok;
+  if (ok_rows) *ok_rows = ok;
   const json summary = {{"format", "wearknit-batch 1"},
                         {"manifest", fs::absolute(manifest.path).string()},
                         {"written", now_utc()},

@@ -4,6 +4,7 @@
 // (batch_slurm.hpp).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -70,13 +71,15 @@ std::string write_row_state(const std::filesystem::path& dir, const std::string&
                             const RowState& state);
 
 // Whether a row is done with these inputs: its state is ok with the same
-// fingerprint.
-bool row_done(const std::filesystem::path& dir, const BatchRow& row);
+// fingerprint (row_fingerprint of the row as it is now).
+bool row_done(const std::filesystem::path& dir, const BatchRow& row,
+              const std::optional<std::uint64_t>& fingerprint);
 
 // Writes DIR/batch.json, DIR/batch.csv and DIR/index.html from the rows'
 // states and their plan folders (plan.json, report.json). Returns "" or the
-// failure. `all_ok` tells whether every row is ok.
+// failure. `ok_rows` receives how many rows are ok (done with the same
+// inputs).
 std::string write_batch_summary(const std::filesystem::path& dir, const Manifest& manifest,
-                                bool* all_ok);
+                                std::size_t* ok_rows);
 
 }  // namespace wearknit::cli

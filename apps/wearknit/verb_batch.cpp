@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
@@ -21,6 +22,7 @@
 #include <optional>
 #include <ostream>
 #include <thread>
+#include <utility>
 
 #include "apps/wearknit/batch.hpp"
 #include "apps/wearknit/batch_slurm.hpp"
@@ -296,17 +298,19 @@ int run_batch(const std::vector<std::string>& args, Context& context) {
   const bool quiet = values.count("quiet") != 0;
   int failed = 0;
   if (values.count("collect") == 0) {
-    std::deque<const BatchRow*> queue;
+    // Each row with its fingerprint, made once (it reads the row's files).
+    std::deque<std::pair<const BatchRow*, std::uint64_t>> queue;
     std::size_t skipped = 0;
     for (std::size_t i = 0; i < total; ++i) {
       if (row_index >= 0 && static_cast<int>(i) != row_index) continue;
       const BatchRow& row = manifest->rows[i];
-      if (row_done(dir, row)) {
+      const auto fingerprint = row_fingerprint(row);
+      if (row_done(dir, row, fingerprint)) {
         ++skipped;
         if (!quiet) context.out << "skip " << row.name << ": done with the same inputs\n";
         continue;
       }
-      queue.push_back(&row);
+      queue.emplace_back(&row, fingerprint.value_or(0));
     }
     const std::size_t to_run = queue.size();
     if (!quiet && to_run > 0) {
@@ -320,11 +324,11 @@ int run_batch(const std::vector<std::string>& args, Context& context) {
     std::size_t done = 0;
     while (!queue.empty() || !running.empty()) {
       while (!queue.empty() && running.size() < static_cast<std::size_t>(jobs)) {
-        const BatchRow* row = queue.front();
+        const auto [row, fingerprint] = queue.front();
         queue.pop_front();
         Running r;
         r.row = row;
-        r.fingerprint = row_fingerprint(*row).value_or(0);
+        r.fingerprint = fingerprint;
         r.start = Clock::now();
         RowState state;
         state.status = "running";
@@ -354,21 +358,19 @@ int run_batch(const std::vector<std::string>& args, Context& context) {
 
   // A single array task leaves the summary to the collect job.
   if (row_index >= 0) return failed == 0 ? kExitOk : kExitInvalid;
-  bool all_ok = false;
-  const std::string failure = write_batch_summary(dir, *manifest, &all_ok);
+  std::size_t ok = 0;
+  const std::string failure = write_batch_summary(dir, *manifest, &ok);
   if (!failure.empty()) {
     context.err << "wearknit batch: " << failure << '\n';
     return kExitUsage;
   }
-  std::size_t ok = 0;
-  for (const BatchRow& row : manifest->rows) ok += row_done(dir, row);
   context.out << "batch: " << total << " rows, " << ok << " ok, " << total - ok
               << " not ok; summary " << (dir / "batch.csv").string() << ", open "
               << (dir / "index.html").string() << '\n';
   // The collect job has done its work once the summary is written; whether
   // every row passed is in the summary and --status.
   if (values.count("collect") != 0) return kExitOk;
-  return all_ok ? kExitOk : kExitInvalid;
+  return ok == total ? kExitOk : kExitInvalid;
 }
 
 }  // namespace wearknit::cli
