@@ -62,6 +62,12 @@ json report_of(const StageFiles& f, const std::vector<std::string>& stale) {
                              {"recut", summary.value("recut", false)},
                              {"cut_seed", summary.value("cut_seed", json())},
                              {"cut_attempts", summary.value("cut_attempts", json::array())}};
+    if (summary.contains("final_check")) {
+      json check = summary["final_check"];
+      check.erase("rounds");
+      check["rounds"] = summary["final_check"].value("rounds", json::array()).size();
+      report["wearability"]["final_check"] = check;
+    }
   }
   if (f.stitch_mesh) report["stitch_mesh"] = f.stitch_mesh->value("report", json::object());
   if (f.schedule) report["schedule"] = f.schedule->value("report", json::object());
@@ -94,6 +100,8 @@ json cuts_of(const StageFiles& f, bool labels_current) {
       // The stage's figures without its time: cuts.json is the same on every run.
       cuts["wearability"] = f.wearability->value("summary", json::object());
       cuts["wearability"].erase("seconds");
+      if (cuts["wearability"].contains("final_check"))
+        cuts["wearability"]["final_check"].erase("seconds");
     }
   }
   if (f.schedule) cuts["schedule_cuts"] = f.schedule->value("schedule_cuts", json::array());

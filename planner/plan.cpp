@@ -221,6 +221,8 @@ int wearability_stage(const CutOutput& input, const PlanParams& params, const fs
                not_wearable_message(result) + '\n';
     return 1;
   }
+  if (const std::string warning = check_warning(result); !warning.empty())
+    run.err += (dir / "wearability.json").string() + ": warning: [W021] " + warning + '\n';
   run.out += describe(result);
   return 0;
 }

@@ -133,6 +133,9 @@ void add_wearability_options(po::options_description& options, WearabilityOption
       "wearability: steps before a trial counts as failed")(
       "resolution", po::value<int>(&p.sdf_resolution)->default_value(p.sdf_resolution),
       "wearability: distance-field cells along the wearer's longest side")(
+      "check-trials", po::value<int>(&p.check_trials)->default_value(p.check_trials),
+      "wearability: M trials of the final check: the labelled garment must come off in every "
+      "one, at a finer cloth and with new seeds, else more arcs are laced (0 = no check)")(
       "cloth-vertices", po::value<int>(&p.cloth_vertices)->default_value(p.cloth_vertices),
       "wearability: subdivide a garment with fewer vertices until it has this many, so it can "
       "bend around the wearer (0 = never)")(
@@ -172,9 +175,9 @@ double wearer_mm_per_unit(const po::variables_map& values, const WearerUnitOptio
 std::string check_wearability_options(const po::variables_map& values, WearabilityOptions& wear) {
   const planner::WearabilityStageParams& p = wear.params;
   if (p.test.trials < 1 || p.runs < 1 || p.test.cloth.max_steps < 1 || p.sdf_resolution < 8 ||
-      p.recut_limit < 0 || p.cloth_vertices < 0) {
-    return "the trials, --runs and --max-steps must be positive, --recut-limit and "
-           "--cloth-vertices not negative, --resolution at least 8";
+      p.recut_limit < 0 || p.cloth_vertices < 0 || p.check_trials < 0) {
+    return "the trials, --runs and --max-steps must be positive, --recut-limit, "
+           "--check-trials and --cloth-vertices not negative, --resolution at least 8";
   }
   wear.params.test.group_testing = values.count("one-at-a-time") == 0;
   return {};

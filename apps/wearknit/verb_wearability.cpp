@@ -142,6 +142,8 @@ int run_wearability(const std::vector<std::string>& args, Context& context) {
                 << '\n';
     return kExitInvalid;
   }
+  if (const std::string warning = planner::check_warning(result); !warning.empty())
+    context.err << labels_path << ": warning: [W021] " << warning << '\n';
   context.out << planner::describe(result) << "wrote " << labels_path << ", "
               << (fs::path(dir) / "wearability.png").string()
               << (result.recut ? " and the re-cut's files" : "") << '\n';

@@ -356,29 +356,38 @@ CoverMesh dressed(const CoverMesh& mesh, const cloth::SignedDistanceField& weare
   return result;
 }
 
-TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
-                            const cloth::SignedDistanceField& wearer,
-                            const WearabilityParams& params, std::uint64_t seed) {
+namespace {
+
+// Trials of one configuration, run in parallel and handed out in order.
+// With `every` false the configuration passes when one trial strips the
+// garment off: trials after the first success are stopped and not
+// recorded. With `every` true it passes only when all of them do: trials
+// after the first failure are stopped and not recorded. Either way the
+// trials recorded all ran to their end, so the record is the same for any
+// thread count.
+TestResult run_trials(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
+                      const cloth::SignedDistanceField& wearer, const WearabilityParams& params,
+                      std::uint64_t seed, int count, bool every) {
   const cloth::PolygonMesh garment = open_cuts(dressed_mesh, open);
-  const int trials = std::max(params.trials, 1);
+  const int trials = std::max(count, 1);
   const int workers = std::min(cloth::resolve_threads(params.threads), trials);
   cloth::ClothParams simulation = params.cloth;
   simulation.threads = 1;  // parallelism is over trials
 
   std::vector<TrialOutcome> outcomes(trials);
   std::vector<std::uint64_t> steps(trials, 0), projections(trials, 0);
-  std::atomic<int> first_success{trials};
-  // Trials are handed out one at a time in order, so a trial after a success
-  // is never started.
+  // The first trial whose outcome decides the test: a success (one of
+  // them) or a failure (every one).
+  std::atomic<int> decisive{trials};
 #pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(1, workers))
   for (int t = 0; t < trials; ++t) {
-    if (t > first_success.load()) continue;
+    if (t > decisive.load()) continue;
     TrialOutcome& outcome = outcomes[t];
     outcome.seed = derive(seed, static_cast<std::uint64_t>(t));
     cloth::ClothSimulation sim(garment, wearer, simulation);
-    // A trial after a successful one cannot change the answer: stop it.
+    // A trial after the decisive one cannot change the answer: stop it.
     const auto result = sim.run(outcome.seed, [&](int, const cloth::ClothSimulation&) {
-      return first_success.load(std::memory_order_relaxed) > t;
+      return decisive.load(std::memory_order_relaxed) > t;
     });
     outcome.success = result.success;
     outcome.steps = result.steps;
@@ -390,25 +399,36 @@ TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<boo
     outcome.cloth_vertices = static_cast<int>(garment.positions.size());
     steps[t] = static_cast<std::uint64_t>(result.steps);
     projections[t] = result.projections;
-    if (result.success) {
-      int current = first_success.load();
-      while (t < current && !first_success.compare_exchange_weak(current, t)) {
+    if (result.success != every) {
+      int current = decisive.load();
+      while (t < current && !decisive.compare_exchange_weak(current, t)) {
       }
     }
   }
   TestResult result;
-  const int last = first_success.load();
-  result.wearable = last < trials;
-  // Trials before the first success all ran to their end (none was stopped:
-  // only trials after a success are), so this record is the same for any
-  // thread count.
-  const int recorded = result.wearable ? last + 1 : trials;
+  const int first = decisive.load();
+  result.wearable = every ? first == trials : first < trials;
+  const int recorded = first < trials ? first + 1 : trials;
   result.trials.assign(outcomes.begin(), outcomes.begin() + recorded);
   for (int t = 0; t < trials; ++t) {
     result.steps += steps[t];
     result.projections += projections[t];
   }
   return result;
+}
+
+}  // namespace
+
+TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
+                            const cloth::SignedDistanceField& wearer,
+                            const WearabilityParams& params, std::uint64_t seed) {
+  return run_trials(dressed_mesh, open, wearer, params, seed, params.trials, false);
+}
+
+TestResult test_every_trial(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
+                            const cloth::SignedDistanceField& wearer,
+                            const WearabilityParams& params, std::uint64_t seed, int trials) {
+  return run_trials(dressed_mesh, open, wearer, params, seed, trials, true);
 }
 
 EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceField& wearer,

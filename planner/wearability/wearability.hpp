@@ -167,6 +167,10 @@ struct ArcResult {
   // sewn (settled before it), so the test is of exactly the garment with
   // this arc closed.
   TestResult test;
+  // Sewn by the elimination, laced by the final check of the stage
+  // (Wearability::check): the check's garment did not come off with it
+  // closed.
+  bool reopened = false;
 };
 
 struct EliminationResult {
@@ -205,6 +209,13 @@ std::uint64_t fingerprint(const CoverMesh& mesh);
 TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
                             const cloth::SignedDistanceField& wearer,
                             const WearabilityParams& params, std::uint64_t seed);
+
+// The final check's test (planner/wearability/wearability_stage.hpp): the
+// configuration passes only when every one of `trials` trials strips the
+// garment off. Trials after the first failure are stopped and not recorded.
+TestResult test_every_trial(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
+                            const cloth::SignedDistanceField& wearer,
+                            const WearabilityParams& params, std::uint64_t seed, int trials);
 
 // The elimination (§5) for run `run` (orders and trial seeds follow from
 // params.seed and run). Throws std::invalid_argument when validate() fails.

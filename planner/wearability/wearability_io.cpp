@@ -153,6 +153,20 @@ json attempts_json(const std::vector<CutAttempt>& attempts) {
   return list;
 }
 
+json check_json(const FinalCheck& check) {
+  json rounds = json::array();
+  for (const auto& r : check.rounds) {
+    rounds.push_back({{"seed", r.seed},
+                      {"passed", r.test.wearable},
+                      {"trials", trials_json(r.test.trials)},
+                      {"laced", r.reopened}});
+  }
+  return {{"ran", check.ran},          {"passed", check.passed},
+          {"trials", check.trials},    {"cloth_vertices", check.cloth_vertices},
+          {"laced", check.reopened()}, {"rounds", rounds},
+          {"seconds", check.seconds}};
+}
+
 json summary_json(const Wearability& result) {
   const LacingStudy& study = result.study;
   const WearabilityParams& params = result.params.test;
@@ -181,6 +195,7 @@ json summary_json(const Wearability& result) {
     summary["tests_replayed"] = run.replayed;
     summary["laced"] = static_cast<int>(run.arcs.size()) - sewn;
   }
+  summary["final_check"] = check_json(result.check);
   summary["recut"] = result.recut.has_value();
   const auto seed = result.cut_seed();
   summary["cut_seed"] = seed ? json(*seed) : json(nullptr);
@@ -210,6 +225,7 @@ json wearability_json(const Wearability& result, std::uint64_t labelled_cut_id) 
                    {"wearable_when_sewn", arc.test.wearable},
                    {"tested_with", arc.test.group - 1},
                    {"trials", trials_json(arc.test.trials)}};
+    if (arc.reopened) detail["laced_by_final_check"] = true;
     if (study.runs.size() > 1) detail["lace_probability"] = study.lace_probability[a];
     entry["wearability"] = detail;
     arcs.push_back(entry);

@@ -31,6 +31,32 @@ struct WearabilityStageParams {
   // it can bend around the wearer (refined_for_cloth; 0 = never).
   int cloth_vertices = 500;
   int sdf_resolution = cloth::SdfParams{}.resolution;  // cells along the wearer's longest side
+  // M: trials of the final check (FinalCheck below); 0 = no check.
+  int check_trials = 4;
+};
+
+// The final check: the garment with the chosen run's laced arcs open must
+// come off in every one of M fresh trials, with seeds the elimination never
+// used and the cloth one subdivision step finer than the elimination's
+// (planner::subdivided), and further subdivided until it has at least
+// cloth_vertices vertices, so that neither a lucky trial nor a resolution
+// too coarse to hold the garment decides the labels. When a trial fails,
+// the sewn arcs nearest where it stays caught are opened (laced) and the
+// check runs again with new seeds, until it passes or no sewn arc is left.
+struct CheckRound {
+  std::uint64_t seed = 0;
+  TestResult test;            // test_every_trial: its trials up to the first failure
+  std::vector<int> reopened;  // arcs laced after this round (empty when it passed)
+};
+
+struct FinalCheck {
+  bool ran = false;
+  bool passed = false;  // the last round's garment came off in every trial
+  int trials = 0;       // M
+  int cloth_vertices = 0;
+  std::vector<CheckRound> rounds;
+  double seconds = 0;
+  int reopened() const;  // arcs laced by the check, over every round
 };
 
 // One cut tried: the one given (attempt 0) or a re-cut.
@@ -50,6 +76,7 @@ struct Wearability {
   CoverMesh cover;                   // the garment of the labelled cut, refined for the cloth
   LacingStudy study;                 // of that cut
   std::vector<CutAttempt> attempts;  // every cut tried, in order
+  FinalCheck check;                  // of the chosen run's labels (its arcs say which it laced)
   double seconds = 0;
 
   bool wearable() const { return chosen_run(study) >= 0; }
@@ -101,6 +128,9 @@ std::string describe(const Wearability& result);
 // Of the failed trials of every cut tried, the one that left the fewest
 // cloth vertices on the wearer (where the garment stays caught), or null.
 const TrialOutcome* farthest_failed_trial(const Wearability& result);
+// The W021 warning when the final check did not pass even with every arc
+// laced, else "".
+std::string check_warning(const Wearability& result);
 // The W020 message when no cut came off the wearer with every cut open.
 std::string not_wearable_message(const Wearability& result);
 

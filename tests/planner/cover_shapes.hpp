@@ -49,6 +49,25 @@ inline CoverMesh sphere_mesh(double radius, int segments, int rings,
   return mesh;
 }
 
+// Box of half-sizes hx × hy × hz about the origin: 8 corners (corner i at
+// x = ±hx by bit 0, y by bit 1, z by bit 2) and 6 quads.
+inline CoverMesh box_mesh(double hx, double hy, double hz) {
+  CoverMesh mesh;
+  for (int i = 0; i < 8; ++i)
+    mesh.positions.push_back({i & 1 ? hx : -hx, i & 2 ? hy : -hy, i & 4 ? hz : -hz});
+  mesh.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  return mesh;
+}
+
+// A box cover whose twelve edges are its arcs, one each.
+inline CoverMesh box_cover(double hx, double hy, double hz) {
+  CoverMesh mesh = box_mesh(hx, hy, hz);
+  const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                            {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  for (const auto& e : edges) mesh.arcs.push_back(planner::arc_from_path({e[0], e[1]}));
+  return mesh;
+}
+
 // Torus about the z axis: tube centre circle `major`, tube radius `minor`;
 // vertex (i, j) at longitude 2πi/nu, tube angle 2πj/nv (j = 0 on the outer
 // equator).

@@ -409,6 +409,94 @@ TEST(WearabilityIoTest, ReportsBadArcsWithCodes) {
 
 // W020 names where the garment is caught: of the failed trials of every cut
 // tried, the one that left the fewest cloth vertices on the wearer.
+// --- the final check ----------------------------------------------------------
+
+// test_every_trial passes only when every trial comes off: the open cap
+// does in each of three, and its record holds all three; the closed shell
+// fails at its first trial, and the record stops there.
+TEST(WearabilityTest, EveryTrialMustComeOffInTheFinalChecksTest) {
+  auto params = test_params();
+  const CoverMesh cap =
+      planner::dressed(sphere_mesh(1.0, 16, 5, std::numbers::pi / 2), sphere_field(), params.cloth);
+  const auto off = planner::test_every_trial(cap, {}, sphere_field(), params, 3, 3);
+  EXPECT_TRUE(off.wearable);
+  ASSERT_EQ(off.trials.size(), 3u);
+  for (const auto& t : off.trials) EXPECT_TRUE(t.success);
+  const CoverMesh shell = planner::dressed(sphere_mesh(1.0, 12, 6), sphere_field(), params.cloth);
+  const auto on = planner::test_every_trial(shell, {}, sphere_field(), params, 3, 3);
+  EXPECT_FALSE(on.wearable);
+  ASSERT_EQ(on.trials.size(), 1u);
+  EXPECT_FALSE(on.trials[0].success);
+}
+
+// A garment too coarse for its wearer fools the elimination: a box bag of
+// eight corners closed round a thin plate slides over it, the plate
+// passing through the bag's faces between the points that collide (its
+// corners and edge midpoints), so with one trial per test every one of the
+// bag's twelve edge arcs is sewn — a closed bag, which cannot come off. The
+// final check's finer cloth holds the plate, fails, and laces arcs until
+// the garment comes off in every trial.
+TEST(WearabilityStageTest, TheFinalCheckCatchesALabellingTheEliminationWasFooledInto) {
+  const auto plate = field_of(box_mesh(1.0, 1.0, 0.05), 64);
+  const CoverMesh bag = box_cover(1.06, 1.06, 0.09);
+  planner::WearabilityStageParams params;
+  params.test = test_params();
+  params.test.trials = 1;
+  params.recut_limit = 0;
+  params.check_trials = 0;
+  const auto fooled = planner::label_garment(bag, plate, params);
+  ASSERT_TRUE(fooled.wearable());
+  const auto& run = fooled.study.runs[0];
+  for (const auto& arc : run.arcs) EXPECT_EQ(arc.label, planner::Label::Sew);
+  EXPECT_FALSE(fooled.check.ran);
+
+  params.check_trials = 4;
+  const auto checked = planner::label_garment(bag, plate, params);
+  ASSERT_TRUE(checked.check.ran);
+  std::cout << planner::describe(checked);
+  ASSERT_GE(checked.check.rounds.size(), 2u);
+  EXPECT_FALSE(checked.check.rounds.front().test.wearable);
+  EXPECT_TRUE(checked.check.passed);
+  EXPECT_TRUE(checked.check.rounds.back().test.wearable);
+  EXPECT_EQ(checked.check.rounds.back().test.trials.size(), 4u);
+  int laced = 0;
+  for (const auto& arc : checked.study.runs[0].arcs) {
+    laced += arc.label == planner::Label::Lace;
+    EXPECT_EQ(arc.reopened, arc.label == planner::Label::Lace);
+  }
+  EXPECT_EQ(laced, checked.check.reopened());
+  EXPECT_GT(laced, 0);
+  // The check's cloth is finer than the elimination's: one subdivision
+  // step, then more until it has cloth_vertices.
+  EXPECT_EQ(
+      checked.check.cloth_vertices,
+      static_cast<int>(planner::refined_for_cloth(planner::subdivided(bag), params.cloth_vertices)
+                           .positions.size()));
+  EXPECT_GE(checked.check.cloth_vertices, params.cloth_vertices);
+}
+
+// W021: the final check did not pass with every arc laced; it says how
+// many of the last round's trials came off. A check that passed says
+// nothing.
+TEST(WearabilityMessageTest, W021SaysHowManyTrialsOfTheFinalCheckCameOff) {
+  planner::Wearability result;
+  result.check.ran = true;
+  result.check.trials = 4;
+  result.check.cloth_vertices = 2048;
+  planner::CheckRound round;
+  planner::TrialOutcome off, on;
+  off.success = true;
+  round.test.trials = {off, off, on};
+  result.check.rounds = {round};
+  const std::string text = planner::check_warning(result);
+  EXPECT_NE(text.find("came off in 2 of the 3 trials of the final check that ran (at 2048 cloth "
+                      "vertices), not in all 4"),
+            std::string::npos)
+      << text;
+  result.check.passed = true;
+  EXPECT_EQ(planner::check_warning(result), "");
+}
+
 TEST(WearabilityMessageTest, W020NamesWhereTheGarmentStaysCaught) {
   planner::Wearability result;
   result.params.test.trials = 2;

@@ -65,6 +65,20 @@ TEST(WearabilityVerbTest, LabelsTorusCoverArcsAndWritesPictureAndFrames) {
   EXPECT_EQ(cuts["arcs"][1]["wearability"]["trials"][0]["success"], false);
   EXPECT_EQ(cuts["arcs"][0]["kept"], "as written");
   EXPECT_EQ(cuts["wearability"]["wearable"], true);
+  // The final check ran on the labels at a finer cloth, every trial off;
+  // report.json records it.
+  const auto& check = cuts["wearability"]["final_check"];
+  EXPECT_EQ(check["ran"], true);
+  EXPECT_EQ(check["passed"], true);
+  EXPECT_EQ(check["trials"], 4);
+  EXPECT_GT(check["cloth_vertices"].get<int>(), 4000);
+  ASSERT_FALSE(check["rounds"].empty());
+  EXPECT_EQ(check["rounds"].back()["trials"].size(), 4u);
+  EXPECT_NE(result.out.find("final check: off in every one of 4 fresh trials"), std::string::npos)
+      << result.out;
+  const auto report = nlohmann::json::parse(read_file(dir / "report.json"));
+  EXPECT_EQ(report["wearability"]["final_check"]["passed"], true);
+  EXPECT_EQ(report["wearability"]["final_check"]["rounds"], check["rounds"].size());
   EXPECT_EQ(read_file(dir / "wearability.png").substr(1, 3), "PNG");
   EXPECT_TRUE(fs::exists(dir / "frames" / "frame-00000.obj"));
   EXPECT_TRUE(fs::exists(dir / "frames" / "frame-00250.obj"));
