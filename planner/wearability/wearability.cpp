@@ -431,9 +431,22 @@ TestResult test_every_trial(const CoverMesh& dressed_mesh, const std::vector<boo
   return run_trials(dressed_mesh, open, wearer, params, seed, trials, true);
 }
 
+bool PassedConfigurations::covers(const std::vector<bool>& open) const {
+  for (const auto& set : open_sets_) {
+    bool inside = set.size() == open.size();
+    for (std::size_t a = 0; inside && a < set.size(); ++a) inside = !set[a] || open[a];
+    if (inside) return true;
+  }
+  return false;
+}
+
+void PassedConfigurations::add(const std::vector<bool>& open) {
+  if (!covers(open)) open_sets_.push_back(open);
+}
+
 EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceField& wearer,
                             const WearabilityParams& params, int run,
-                            const ProgressCallback& progress) {
+                            const ProgressCallback& progress, PassedConfigurations* passed) {
   if (const auto problems = validate(mesh); !problems.empty()) {
     throw std::invalid_argument(problems.front());
   }
@@ -448,7 +461,7 @@ EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceFi
   if (progress) progress(report);
   const std::uint64_t garment_key = params.record != nullptr ? fingerprint(garment) : 0;
   // A test from the record when it holds one, else simulated and recorded.
-  auto run_test = [&](std::uint64_t seed) {
+  auto simulate_test = [&](std::uint64_t seed) {
     if (params.record == nullptr) return test_wearability(garment, open, wearer, params, seed);
     const std::uint64_t key = test_key(garment_key, open, seed);
     if (auto known = params.record->find(key)) {
@@ -457,6 +470,19 @@ EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceFi
     }
     TestResult fresh = test_wearability(garment, open, wearer, params, seed);
     params.record->add(key, fresh);
+    return fresh;
+  };
+  // A test inferred from an earlier run's pass, else simulate_test.
+  auto run_test = [&](std::uint64_t seed) {
+    if (passed != nullptr && passed->covers(open)) {
+      ++result.inferred;
+      TestResult known;
+      known.wearable = true;
+      known.inferred = true;
+      return known;
+    }
+    TestResult fresh = simulate_test(seed);
+    if (passed != nullptr && fresh.wearable) passed->add(open);
     return fresh;
   };
   // §5: first check that the garment with every cut open is wearable.
@@ -564,6 +590,7 @@ LacingStudy study_lacing(const CoverMesh& mesh, const cloth::SignedDistanceField
   LacingStudy study;
   const std::size_t arcs = mesh.arcs.size();
   std::vector<int> laced(arcs, 0);
+  PassedConfigurations passed;
   for (int r = 0; r < std::max(runs, 1); ++r) {
     ProgressCallback forward;
     if (progress) {
@@ -573,7 +600,8 @@ LacingStudy study_lacing(const CoverMesh& mesh, const cloth::SignedDistanceField
         progress(copy);
       };
     }
-    study.runs.push_back(eliminate(mesh, wearer, params, r, forward));
+    study.runs.push_back(
+        eliminate(mesh, wearer, params, r, forward, params.reuse_passes ? &passed : nullptr));
     const auto& result = study.runs.back();
     if (!result.wearable()) continue;
     ++study.wearable_runs;

@@ -131,6 +131,23 @@ struct WearabilityParams {
   std::uint64_t seed = 1;
   // Not owned; when set, every test is looked up here first and added after.
   TestRecord* record = nullptr;
+  // With several runs (study_lacing): a configuration whose open arcs
+  // include all the open arcs of one that came off in an earlier run comes
+  // off without a test (opening more never makes a garment harder to
+  // take off).
+  bool reuse_passes = true;
+};
+
+// The open-arc sets of configurations that came off, shared by the runs of
+// a study (WearabilityParams::reuse_passes).
+class PassedConfigurations {
+ public:
+  // Whether `open` opens every arc that some recorded configuration opens.
+  bool covers(const std::vector<bool>& open) const;
+  void add(const std::vector<bool>& open);
+
+ private:
+  std::vector<std::vector<bool>> open_sets_;
 };
 
 struct TrialOutcome {
@@ -153,6 +170,9 @@ struct TestResult {
   std::vector<TrialOutcome> trials;  // up to and including the first success
   std::uint64_t steps = 0;           // simulated, over every trial started
   std::uint64_t projections = 0;
+  // Not simulated: an earlier run of the study passed with a subset of
+  // this test's open arcs (LacingStudy, WearabilityParams::reuse_passes).
+  bool inferred = false;
 };
 
 enum class Label : std::uint8_t { Lace, Sew };
@@ -179,6 +199,7 @@ struct EliminationResult {
   std::vector<ArcResult> arcs;  // by arc index
   int tests = 0;                // tests run after the initial one
   int replayed = 0;             // tests (the initial one included) read from params.record
+  int inferred = 0;             // tests passed from an earlier run's (TestResult::inferred)
   double seconds = 0;
   std::uint64_t steps = 0;
   std::uint64_t projections = 0;
@@ -219,9 +240,12 @@ TestResult test_every_trial(const CoverMesh& dressed_mesh, const std::vector<boo
 
 // The elimination (§5) for run `run` (orders and trial seeds follow from
 // params.seed and run). Throws std::invalid_argument when validate() fails.
+// `passed` (optional, not owned): configurations that came off in earlier
+// runs, looked up before each test and added to after each pass.
 EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceField& wearer,
                             const WearabilityParams& params, int run = 0,
-                            const ProgressCallback& progress = {});
+                            const ProgressCallback& progress = {},
+                            PassedConfigurations* passed = nullptr);
 
 struct LacingStudy {
   std::vector<EliminationResult> runs;

@@ -193,6 +193,9 @@ json summary_json(const Wearability& result) {
     summary["tests"] = run.tests + 1;
     // Tests of a run cut short, read from its journal instead of simulated.
     summary["tests_replayed"] = run.replayed;
+    // Passed without a simulation: an earlier run passed a subset of its
+    // open arcs (WearabilityParams::reuse_passes).
+    summary["tests_inferred"] = run.inferred;
     summary["laced"] = static_cast<int>(run.arcs.size()) - sewn;
   }
   summary["final_check"] = check_json(result.check);
@@ -226,6 +229,7 @@ json wearability_json(const Wearability& result, std::uint64_t labelled_cut_id) 
                    {"tested_with", arc.test.group - 1},
                    {"trials", trials_json(arc.test.trials)}};
     if (arc.reopened) detail["laced_by_final_check"] = true;
+    if (arc.test.inferred) detail["inferred_from_earlier_run"] = true;
     if (study.runs.size() > 1) detail["lace_probability"] = study.lace_probability[a];
     entry["wearability"] = detail;
     arcs.push_back(entry);

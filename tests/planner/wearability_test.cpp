@@ -226,6 +226,43 @@ TEST(WearabilityTest, CapArcsAreAllSewnInEveryRun) {
   }
 }
 
+TEST(WearabilityTest, PassedConfigurationsCoverTheirSupersetsOnly) {
+  planner::PassedConfigurations passed;
+  EXPECT_FALSE(passed.covers({true, true, true}));
+  passed.add({true, false, false});
+  EXPECT_TRUE(passed.covers({true, false, false}));
+  EXPECT_TRUE(passed.covers({true, true, false}));
+  EXPECT_FALSE(passed.covers({false, true, true}));
+  EXPECT_FALSE(passed.covers({true, false}));  // another garment's arcs
+}
+
+// Run 0 sews every slit of the cap: the cap with nothing open came off.
+// Every configuration of run 1 opens at least that (nothing), so with
+// reuse_passes run 1 simulates nothing and sews the same; without it, run 1
+// simulates its tests and comes to the same labels.
+TEST(WearabilityTest, ALaterRunPassesSupersetsOfAnEarlierRunsPassWithoutATest) {
+  CoverMesh cap = sphere_mesh(1.0, 12, 4, std::numbers::pi / 2);
+  auto ring = [](int i, int j) { return 1 + (i - 1) * 12 + j; };
+  for (int j : {0, 4, 8})
+    cap.arcs.push_back(planner::arc_from_path({ring(4, j), ring(3, j), ring(2, j)}));
+  auto params = test_params();
+  const auto reused = planner::study_lacing(cap, sphere_field(), params, 2);
+  ASSERT_EQ(reused.runs.size(), 2u);
+  EXPECT_GT(reused.runs[0].steps, 0u);
+  EXPECT_EQ(reused.runs[0].inferred, 0);
+  EXPECT_EQ(reused.runs[1].steps, 0u);
+  EXPECT_EQ(reused.runs[1].inferred, reused.runs[1].tests + 1);
+  for (const auto& arc : reused.runs[1].arcs) {
+    EXPECT_EQ(arc.label, planner::Label::Sew);
+    EXPECT_TRUE(arc.test.inferred);
+  }
+  params.reuse_passes = false;
+  const auto fresh = planner::study_lacing(cap, sphere_field(), params, 2);
+  EXPECT_GT(fresh.runs[1].steps, 0u);
+  EXPECT_EQ(fresh.runs[1].inferred, 0);
+  EXPECT_EQ(fresh.lace_probability, reused.lace_probability);
+}
+
 TEST(WearabilityTest, GroupTestingSewsRunsOfCapArcsWithFewerTests) {
   // Twelve slits from the rim of an open cap: it comes off whatever is sewn.
   // One at a time that is twelve tests; runs of 1, 2, 4 and 5 arcs need 4.
