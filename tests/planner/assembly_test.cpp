@@ -159,6 +159,73 @@ std::vector<std::array<int, 2>> arc_ends(const json& cuts) {
   return ends;
 }
 
+// Where two arcs meet end to end at a vertex no other arc ends at.
+struct Joints {
+  int same_label = 0;
+  int two_labels = 0;
+  std::array<int, 2> first_same{{-1, -1}};  // the arcs of the first same-label joint
+};
+
+// Checks the chaining of cuts.json's arcs against the closing order `lines`
+// of the guide: every arc in exactly one seam; two arcs of one label that
+// meet end to end where no other arc ends are one seam, arcs of two labels
+// never are (cuts.json's `seam` and the seam number of the guide's line
+// naming them); fewer seams than arcs where there is such a joint;
+// `seams` consistent with the arcs.
+Joints expect_chained_by_label(const json& cuts, const std::vector<std::string>& lines) {
+  std::map<int, std::set<int>> seam_lines_of_arc;  // arc -> the seam numbers naming it
+  for (const std::string& line : lines) {
+    for (const int arc : arcs_of_line(line)) {
+      // "cut-arcs N+M (...): nothing to join" stands for a seam of its own.
+      seam_lines_of_arc[arc].insert(std::isdigit(static_cast<unsigned char>(line[0]))
+                                        ? std::stoi(line)
+                                        : -arcs_of_line(line).front() - 1);
+    }
+  }
+  const json& arcs = cuts.at("arcs");
+  for (const json& arc : arcs) {
+    const int id = arc.at("id").get<int>();
+    EXPECT_EQ(seam_lines_of_arc[id].size(), 1u) << "cut-arc " << id << " is not in one seam";
+  }
+  const auto ends = arc_ends(cuts);
+  std::map<int, std::vector<int>> arcs_at;  // vertex -> arcs ending there (twice for a loop)
+  for (std::size_t a = 0; a < ends.size(); ++a) {
+    for (const int v : ends[a]) arcs_at[v].push_back(static_cast<int>(a));
+  }
+  Joints joints;
+  for (const auto& [vertex, at_vertex] : arcs_at) {
+    if (at_vertex.size() != 2 || at_vertex[0] == at_vertex[1]) continue;
+    const json& a = arcs[static_cast<std::size_t>(at_vertex[0])];
+    const json& b = arcs[static_cast<std::size_t>(at_vertex[1])];
+    const bool same_label = a.at("label") == b.at("label");
+    EXPECT_EQ(a.at("seam") == b.at("seam"), same_label) << "vertex " << vertex;
+    EXPECT_EQ(seam_lines_of_arc[at_vertex[0]] == seam_lines_of_arc[at_vertex[1]], same_label)
+        << "arcs " << at_vertex[0] << " and " << at_vertex[1] << " meet at vertex " << vertex;
+    if (same_label) {
+      if (joints.same_label++ == 0) joints.first_same = {at_vertex[0], at_vertex[1]};
+    } else {
+      ++joints.two_labels;
+    }
+  }
+  const json& chains = cuts.at("seams");
+  if (joints.same_label > 0) {
+    EXPECT_LT(chains.size(), arcs.size());
+  }
+  std::size_t chained = 0;
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    double length = 0;
+    for (const json& a : chains[c].at("arcs")) {
+      EXPECT_EQ(arcs.at(a.get<std::size_t>()).at("seam"), c);
+      EXPECT_EQ(arcs.at(a.get<std::size_t>()).at("label"), chains[c].at("label"));
+      length += arcs.at(a.get<std::size_t>()).at("length_mm").get<double>();
+      ++chained;
+    }
+    EXPECT_NEAR(chains[c].at("length_mm").get<double>(), length, 0.01);
+  }
+  EXPECT_EQ(chained, arcs.size());
+  return joints;
+}
+
 TEST(AssemblyTest, GuideOfARealPlanFolderShowsEveryPieceAndSeam) {
   WEARKNIT_REQUIRE_SHARED(shared);
   const fs::path mesh = shared / "meshes" / "3torus-quad.obj";
@@ -240,61 +307,11 @@ TEST(AssemblyTest, GuideOfARealPlanFolderShowsEveryPieceAndSeam) {
     EXPECT_EQ(line.find(": ease evenly") != std::string::npos, a != b) << line;
   }
 
-  // Every arc of cuts.json is listed once, with its label; the labels'
-  // styles appear on the pieces. Arcs are chained into seams (cuts.json's
-  // `seam`): two arcs of one label that meet end to end where no other arc
-  // ends are one seam, arcs of two labels never are.
-  std::map<int, std::set<int>> seam_lines_of_arc;  // arc -> the seam numbers naming it
-  for (const std::string& line : lines) {
-    for (const int arc : arcs_of_line(line)) {
-      // "cut-arcs N+M (...): nothing to join" stands for a seam of its own.
-      seam_lines_of_arc[arc].insert(std::isdigit(static_cast<unsigned char>(line[0]))
-                                        ? std::stoi(line)
-                                        : -arcs_of_line(line).front() - 1);
-    }
-  }
+  // Every arc of cuts.json is listed once; the arcs are chained into seams.
+  const Joints joints = expect_chained_by_label(cuts, lines);
+  EXPECT_GT(joints.same_label, 0);  // a cut whose arcs chain: fewer seams than arcs
   std::set<std::string> labels;
-  const json& arcs = cuts.at("arcs");
-  for (const json& arc : arcs) {
-    const int id = arc.at("id").get<int>();
-    labels.insert(arc.at("label").get<std::string>());
-    EXPECT_EQ(seam_lines_of_arc[id].size(), 1u) << "cut-arc " << id << " is not in one seam";
-  }
-  const auto ends = arc_ends(cuts);
-  std::map<int, std::vector<int>> arcs_at;  // vertex -> arcs ending there (twice for a loop)
-  for (std::size_t a = 0; a < ends.size(); ++a) {
-    for (const int v : ends[a]) arcs_at[v].push_back(static_cast<int>(a));
-  }
-  int joints = 0;
-  for (const auto& [vertex, at_vertex] : arcs_at) {
-    if (at_vertex.size() != 2 || at_vertex[0] == at_vertex[1]) continue;
-    const json& a = arcs[static_cast<std::size_t>(at_vertex[0])];
-    const json& b = arcs[static_cast<std::size_t>(at_vertex[1])];
-    const bool same_label = a.at("label") == b.at("label");
-    EXPECT_EQ(a.at("seam") == b.at("seam"), same_label) << "vertex " << vertex;
-    if (same_label) {
-      ++joints;
-      EXPECT_EQ(seam_lines_of_arc[at_vertex[0]], seam_lines_of_arc[at_vertex[1]])
-          << "arcs " << at_vertex[0] << " and " << at_vertex[1] << " meet at vertex " << vertex;
-    }
-  }
-  // Fewer seams than arcs wherever two arcs of one label meet end to end.
-  const json& chains = cuts.at("seams");
-  if (joints > 0) {
-    EXPECT_LT(chains.size(), arcs.size());
-  }
-  std::size_t chained = 0;
-  for (std::size_t c = 0; c < chains.size(); ++c) {
-    double length = 0;
-    for (const json& a : chains[c].at("arcs")) {
-      EXPECT_EQ(arcs.at(a.get<std::size_t>()).at("seam"), c);
-      EXPECT_EQ(arcs.at(a.get<std::size_t>()).at("label"), chains[c].at("label"));
-      length += arcs.at(a.get<std::size_t>()).at("length_mm").get<double>();
-      ++chained;
-    }
-    EXPECT_NEAR(chains[c].at("length_mm").get<double>(), length, 0.01);
-  }
-  EXPECT_EQ(chained, arcs.size());
+  for (const json& arc : cuts.at("arcs")) labels.insert(arc.at("label").get<std::string>());
   for (const std::string& l : labels) {
     EXPECT_GT(count(svg, "class=\"seam-" + l + "\""), 0) << l;
     EXPECT_GT(count(svg, "class=\"seam-label " + l + "\""), 0) << l;
@@ -328,6 +345,23 @@ TEST(AssemblyTest, GuideOfARealPlanFolderShowsEveryPieceAndSeam) {
   EXPECT_EQ(guide.at("seams"), summary.seams);
   EXPECT_NEAR(guide.at("sewn_mm").get<double>(), summary.sewn_mm, 0.05);
   EXPECT_NEAR(guide.at("laced_mm").get<double>(), summary.laced_mm, 0.05);
+
+  // Two arcs that made one seam, given two labels, make two seams.
+  const fs::path wear = dir / "wearability.json";
+  json relabelled = json::parse(read_file(wear));
+  json& arc = relabelled.at("arcs").at(static_cast<std::size_t>(joints.first_same[0]));
+  arc["label"] = arc.at("label") == "sew" ? "lace" : "sew";
+  write_file(wear, relabelled.dump());
+  const auto split = run_wearknit("assembly '" + dir.string() + "' -q");
+  ASSERT_EQ(split.exit_code, 0) << split.err;
+  const json split_cuts = json::parse(read_file(dir / "cuts.json"));
+  const auto& split_arcs = split_cuts.at("arcs");
+  EXPECT_NE(split_arcs.at(static_cast<std::size_t>(joints.first_same[0])).at("seam"),
+            split_arcs.at(static_cast<std::size_t>(joints.first_same[1])).at("seam"));
+  const Joints after =
+      expect_chained_by_label(split_cuts, order_lines(read_file(dir / "assembly.svg")));
+  EXPECT_EQ(after.two_labels, joints.two_labels + 1);
+  EXPECT_EQ(split_cuts.at("seams").size(), cuts.at("seams").size() + 1);
   EXPECT_EQ(summary.arcs, static_cast<int>(cuts.at("arcs").size()));
   EXPECT_EQ(summary.pdf_pages, pages);
   fs::remove_all(dir);
