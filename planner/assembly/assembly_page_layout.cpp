@@ -59,7 +59,7 @@ std::vector<Placement> place_pieces(const Model& m, int first_page, double top, 
   double x = kMargin;
   double y = top + kPiecesTitle;
   double shelf = 0;
-  bool any = false;  // on this page
+  bool any = false;  // a piece placed yet
   for (std::size_t p = 0; p < m.layouts.size(); ++p) {
     Placement pl;
     pl.piece = static_cast<int>(p);
