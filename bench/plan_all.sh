@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `wearknit plan` on every closed mesh of ../shared/meshes, the mesh as the
 # garment over itself, scaled to 100 mm along its longest side; prints a
-# Markdown table (docs/results.md): result, time per stage, pieces, arcs sewn
+# Markdown table (docs/results.md): result, time per stage, pieces, arcs and seams sewn
 # and laced, stitches, passes, estimated knit time.
 #   bench/plan_all.sh [BUILD_DIR]            (default build)
 # Environment: PLAN_OPTS extra options for every plan (e.g. "--wear-trials 2"),

@@ -11,8 +11,10 @@ import sys
 STAGES = ["cut", "wearability", "stitch-mesh", "schedule"]
 
 print("| mesh | result | cut s | wearability s | stitch mesh s | schedule s | total s "
-      "| pieces | arcs sewn / laced | schedule cuts | stitches | passes | est. knit time |")
-print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: |")
+      "| pieces | arcs sewn / laced | seams sewn / laced | schedule cuts | stitches | passes "
+      "| est. knit time |")
+print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- | ---: | ---: | ---: "
+      "| ---: |")
 for arg in sys.argv[1:]:
     name, rest = arg.split("=", 1)
     parts = rest.split(":")
@@ -101,6 +103,10 @@ for arg in sys.argv[1:]:
     knit = "%.0f min" % (s["estimated_knit_time_s"] / 60) if "estimated_knit_time_s" in s else "–"
     total = "%.1f" % plan["total_s"] if "total_s" in plan else (wall or "–")
     arcs = "%d / %d" % (s["sewn"], s["laced"]) if "sewn" in s and s.get("arcs") else "–"
-    print("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+    # The assembly guide's seams (chained cut-arcs, scheduling cuts, wale
+    # seams; docs/assembly.md), from report.json's copy of assembly.json.
+    guide = report.get("assembly", {})
+    seams = "%d / %d" % (guide["sewn"], guide["laced"]) if "sewn" in guide else "–"
+    print("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
         name, result, t("cut"), t("wearability"), t("stitch-mesh"), t("schedule"), total,
-        g("pieces"), arcs, g("schedule_cuts"), g("stitches"), g("passes"), knit))
+        g("pieces"), arcs, seams, g("schedule_cuts"), g("stitches"), g("passes"), knit))

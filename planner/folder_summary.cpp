@@ -1,11 +1,14 @@
 // The folder's summary files, report.json and cuts.json, made from the stage
 // files (planner/pipeline.hpp, write_folder_summary; docs/plan.md).
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "planner/common/index.hpp"
 #include "planner/common/json_file.hpp"
+#include "planner/cut/seam_chains.hpp"
 #include "planner/pipeline.hpp"
 
 namespace planner {
@@ -77,8 +80,49 @@ json report_of(const StageFiles& f, const std::vector<std::string>& stale) {
   return report;
 }
 
+// The seams the cut-arcs make (planner/cut/seam_chains.hpp): each arc's
+// `seam`, and `seams`, each with its arcs in order (and whether each is
+// walked backwards), its label and its length. Arcs without a label count
+// as sewn, as the assembly guide treats them; the label stays null.
+void add_seams(json& cuts) {
+  json& arcs = cuts["arcs"];
+  std::vector<ArcEnds> ends;
+  for (std::size_t a = 0; a < arcs.size(); ++a) {
+    const json edges = arcs[a].value("edges", json::array());
+    // An arc without edges joins nothing: ends no other arc has.
+    const int none = -1 - 2 * static_cast<int>(a);
+    ArcEnds e{none, none - 1, 0};
+    if (!edges.empty() && edges.front().size() == 2 && edges.back().size() == 2) {
+      e.first = edges.front()[0].get<int>();
+      e.last = edges.back()[1].get<int>();
+    }
+    e.label = arcs[a].value("label", json()) == "lace" ? 1 : 0;
+    ends.push_back(e);
+  }
+  const std::vector<SeamChain> chains = chain_arcs(ends);
+  json seams = json::array();
+  for (std::size_t s = 0; s < chains.size(); ++s) {
+    const SeamChain& chain = chains[s];
+    double length = 0;
+    bool labelled = true;
+    for (const int a : chain.arcs) {
+      json& arc = arcs[at(a)];
+      arc["seam"] = s;
+      length += arc.value("length_mm", 0.0);
+      labelled = labelled && arc.value("label", json()).is_string();
+    }
+    seams.push_back({{"id", s},
+                     {"arcs", chain.arcs},
+                     {"reversed", chain.reversed},
+                     {"label", labelled ? json(chain.label == 1 ? "lace" : "sew") : json()},
+                     {"closed", chain.closed},
+                     {"length_mm", std::round(length * 100) / 100}});
+  }
+  cuts["seams"] = std::move(seams);
+}
+
 // The cut-arcs with their labels (when wearability.json belongs to this
-// cut) and the scheduler's cuts.
+// cut) and seams, and the scheduler's cuts.
 json cuts_of(const StageFiles& f, bool labels_current) {
   json cuts = json::object();
   if (f.cut) {
@@ -103,6 +147,7 @@ json cuts_of(const StageFiles& f, bool labels_current) {
       if (cuts["wearability"].contains("final_check"))
         cuts["wearability"]["final_check"].erase("seconds");
     }
+    add_seams(cuts);
   }
   if (f.schedule) cuts["schedule_cuts"] = f.schedule->value("schedule_cuts", json::array());
   return cuts;

@@ -1,6 +1,7 @@
 #include "planner/plan.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <iomanip>
@@ -283,8 +284,10 @@ int assembly_stage(const fs::path& dir, const std::string& wearer_path, StageRun
   }
   std::ostringstream out;
   out << "assembly guide: " << guide.pieces << " piece" << (guide.pieces == 1 ? "" : "s") << ", "
-      << guide.seams << " seams (" << guide.sewn << " sew, " << guide.laced << " lace), "
-      << guide.pdf_pages << " pages: assembly.svg, assembly.pdf, assembly-3d.png\n";
+      << guide.seams << " seams (" << guide.sewn << " sew, " << std::lround(guide.sewn_mm)
+      << " mm; " << guide.laced << " lace, " << std::lround(guide.laced_mm) << " mm), "
+      << guide.pdf_pages << " page" << (guide.pdf_pages == 1 ? "" : "s")
+      << ": assembly.svg, assembly.pdf, assembly-3d.png\n";
   run.out = out.str();
   return 0;
 }
@@ -319,6 +322,14 @@ json plan_summary(const fs::path& dir) {
     summary["wale_seams"] = report.value("wale_seams", 0);
     summary["passes"] = passes;
     summary["estimated_knit_time_s"] = knit_time;
+  }
+  // The seams a person closes, from the assembly guide (docs/assembly.md).
+  if (const auto guide = read_json_object_if_any((dir / "assembly.json").string())) {
+    const json seams = guide->value("summary", json::object());
+    summary["seams_sewn"] = seams.value("sewn", 0);
+    summary["seams_laced"] = seams.value("laced", 0);
+    summary["seams_sewn_mm"] = seams.value("sewn_mm", 0.0);
+    summary["seams_laced_mm"] = seams.value("laced_mm", 0.0);
   }
   return summary;
 }
@@ -470,8 +481,16 @@ std::string describe(const PlanResult& result) {
   const int pieces = summary.value("pieces", 0);
   std::ostringstream text;
   text << pieces << " piece" << (pieces == 1 ? "" : "s") << ", " << summary.value("stitches", 0)
-       << " stitches, " << summary.value("sewn", 0) << " arcs sewn, " << summary.value("laced", 0)
-       << " laced, " << summary.value("passes", 0) << " passes, about "
+       << " stitches, ";
+  if (summary.contains("seams_sewn")) {
+    text << summary.value("seams_sewn", 0) << " seams sewn ("
+         << std::lround(summary.value("seams_sewn_mm", 0.0)) << " mm), "
+         << summary.value("seams_laced", 0) << " laced ("
+         << std::lround(summary.value("seams_laced_mm", 0.0)) << " mm), ";
+  } else {
+    text << summary.value("sewn", 0) << " arcs sewn, " << summary.value("laced", 0) << " laced, ";
+  }
+  text << summary.value("passes", 0) << " passes, about "
        << static_cast<int>(summary.value("estimated_knit_time_s", 0.0) / 60 + 0.5)
        << " min on the machine";
   return text.str();

@@ -92,8 +92,10 @@ struct PlanResult {
 PlanResult run_plan(const PlanInputs& inputs, const PlanParams& params, const std::string& dir,
                     PlanObserver& observer);
 
-// The plan's closing line: "N pieces, S stitches, a arcs sewn, l laced, P
-// passes, about M min on the machine".
+// The plan's closing line: "N pieces, S stitches, s seams sewn (X mm), l
+// laced (Y mm), P passes, about M min on the machine", the seams as the
+// assembly guide numbers them; "a arcs sewn, l laced" instead when the
+// folder has no guide.
 std::string describe(const PlanResult& result);
 
 }  // namespace planner

@@ -1,5 +1,6 @@
 // wearknit assembly: (re)writes the assembly guide of a finished plan folder
 // (planner/assembly/assembly.hpp): assembly.svg, assembly.pdf and assembly-3d.png.
+#include <cmath>
 #include <filesystem>
 #include <ostream>
 
@@ -82,7 +83,8 @@ int run_assembly(const std::vector<std::string>& args, Context& context) {
     context.out << (base / "assembly.pdf").string() << ": " << summary.pieces << " piece"
                 << (summary.pieces == 1 ? "" : "s") << ", " << summary.seams << " seam"
                 << (summary.seams == 1 ? "" : "s") << " (" << summary.sewn << " to sew, "
-                << summary.laced << " to lace) from " << summary.arcs << " cut-arc"
+                << std::lround(summary.sewn_mm) << " mm; " << summary.laced << " to lace, "
+                << std::lround(summary.laced_mm) << " mm) from " << summary.arcs << " cut-arc"
                 << (summary.arcs == 1 ? "" : "s") << ", " << summary.pdf_pages << " page"
                 << (summary.pdf_pages == 1 ? "" : "s") << "; also "
                 << (base / "assembly.svg").string() << " and "

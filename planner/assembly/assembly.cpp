@@ -104,9 +104,12 @@ std::string write_assembly_guide(const fs::path& plan_dir, const std::string& we
 
   if (summary) {
     summary->pieces = static_cast<int>(m.layouts.size());
-    summary->seams = static_cast<int>(m.seams.size());
+    summary->seams = m.numbered;
+    summary->parts = static_cast<int>(m.seams.size());
     summary->sewn = m.sewn;
-    summary->laced = summary->seams - m.sewn;
+    summary->laced = m.numbered - m.sewn;
+    for (const assembly::Seam& s : m.seams)
+      (s.lace ? summary->laced_mm : summary->sewn_mm) += 0.5 * (s.stretch_mm[0] + s.stretch_mm[1]);
     summary->arcs = static_cast<int>(m.arcs.size());
     summary->pdf_pages = g.pages.pages();
   }

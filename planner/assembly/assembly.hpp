@@ -34,10 +34,13 @@ namespace planner {
 // What a guide holds, for the verb's summary line and for tests.
 struct AssemblySummary {
   int pieces = 0;
-  int seams = 0;  // numbered seams (each drawn at its two sides)
+  int seams = 0;  // numbered seams (each part drawn at its two stretches)
+  int parts = 0;  // seams and parts of seams, each joining one stretch to one other
   int sewn = 0;   // seams 1..sewn are sewn, the rest laced
   int laced = 0;
-  int arcs = 0;  // cut-arcs of the cut (every one is listed)
+  double sewn_mm = 0;   // total length of the sewn seams (each the mean of its two stretches)
+  double laced_mm = 0;  // the same for the laced ones
+  int arcs = 0;         // cut-arcs of the cut (every one is listed)
   int pdf_pages = 0;
 };
 

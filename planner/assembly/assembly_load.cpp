@@ -46,7 +46,8 @@ bool differ(std::uint64_t a, std::uint64_t b) {
 }
 
 // The cut-arcs (ids, lengths) into m.arcs with their labels when the folder
-// has wearability.json, and where each runs through the proxy, by id.
+// has wearability.json, and where each runs through the proxy, by id; the
+// arcs chained into seams into m.chains.
 std::map<int, ArcLine> arcs_of(Model& m, const Cut& cut,
                                const std::optional<WearabilityRecord>& labels) {
   std::map<int, ArcLine> lines;
@@ -70,6 +71,18 @@ std::map<int, ArcLine> arcs_of(Model& m, const Cut& cut,
     lines[info.id] = std::move(line);
     m.arcs.push_back(info);
   }
+  // The arcs chained into seams; arcs without a label count as sewn, the
+  // label the guide gives them.
+  std::vector<ArcEnds> ends;
+  for (std::size_t i = 0; i < cut.mesh.arcs.size(); ++i) {
+    const std::vector<int>& v = cut.mesh.arcs[i].vertices;
+    const int none = -1 - 2 * static_cast<int>(i);  // ends no other arc has
+    ends.push_back(
+        {v.empty() ? none : v.front(), v.empty() ? none - 1 : v.back(), m.arcs[i].lace ? 1 : 0});
+  }
+  m.chains = chain_arcs(ends);
+  const std::vector<int> seam = seam_of_arc(m.chains, m.arcs.size());
+  for (std::size_t i = 0; i < m.arcs.size(); ++i) m.arcs[i].seam = seam[i];
   return lines;
 }
 
@@ -161,7 +174,7 @@ void load(Model& m, const fs::path& dir) {
   std::vector<Seam> cut_seams =
       schedule_cut_seams(m, schedule.schedule_cuts, dir / "schedule.json");
   std::vector<Seam> wale = wale_seams(m);
-  ArcSeams arcs = arc_seams(m, arc_of_key, lines);
+  ArcSeams arcs = chain_seams(m, arc_of_key, lines);
   number_seams(m, std::move(cut_seams), std::move(wale), std::move(arcs));
 }
 

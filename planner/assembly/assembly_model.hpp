@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "knitout/diagnostic.hpp"
+#include "planner/cut/seam_chains.hpp"
 #include "planner/schedule/piece_layout.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
 
@@ -46,17 +47,26 @@ struct SideRef {
 
 enum class SeamKind { ScheduleCut, WaleSeam, CutArc };
 
+// One numbered seam, or one part of it: a seam whose stretches pass from
+// one piece to another is split into parts (`seam 4 part 2 of 3`, drawn as
+// 4.2), each joining exactly one stretch to one other.
 struct Seam {
-  int number = 0;
+  int number = 0;  // shared by the parts of a seam
   bool lace = false;
-  bool labelled = true;  // false: the arc has no wearability label (treated as sew)
+  bool labelled = true;  // false: the arcs have no wearability label (treated as sew)
   SeamKind kind = SeamKind::CutArc;
-  int arc = -1;  // the cut's arc id (CutArc), or index in schedule_cuts (ScheduleCut)
+  int arc = -1;           // the first of `arcs` (CutArc), or index in schedule_cuts (ScheduleCut)
+  std::vector<int> arcs;  // CutArc: the cut's arc ids of the seam, in order along it
   int part = 1;
   int parts = 1;
   std::array<std::vector<SideRef>, 2> sides;  // the two stretches that are joined, in order
   std::array<int, 2> piece{{0, 0}};           // the piece each side's number is drawn on
   std::array<SideRef, 2> label_at;            // the side each side's number is drawn on
+  std::array<double, 2> stretch_mm{{0, 0}};   // length of each stretch, stitch mesh mm
+  // The name drawn on the pieces: the number, with the part for a seam in parts.
+  std::string name() const {
+    return parts > 1 ? std::to_string(number) + "." + std::to_string(part) : std::to_string(number);
+  }
 };
 
 struct ArcInfo {
@@ -64,7 +74,8 @@ struct ArcInfo {
   bool lace = false;
   bool labelled = false;
   double length_mm = 0;
-  int seams = 0;  // numbered seams made from it
+  int seam = -1;  // index of its chain in Model::chains
+  int seams = 0;  // numbered seam parts made from its chain
 };
 
 struct Model {
@@ -76,10 +87,12 @@ struct Model {
   std::vector<int> piece_of_face;
   std::vector<int> layout_index;  // face -> index in its piece's layout
   std::unordered_map<std::uint64_t, std::vector<SideRef>> sides_by_key;
-  std::vector<Seam> seams;  // in closing order, numbered 1..n
+  std::vector<Seam> seams;  // in closing order, numbered 1..numbered, parts in order
   std::vector<ArcInfo> arcs;
+  std::vector<SeamChain> chains;  // the cut-arcs chained into seams (seam_chains.hpp)
   std::map<SideRef, int> seam_of_side;
-  int sewn = 0;
+  int numbered = 0;  // seam numbers
+  int sewn = 0;      // seams 1..sewn are sewn, the rest laced
 };
 
 // The side of another face that `s` is shared with, or {kNone, kNone} on the

@@ -49,27 +49,50 @@ std::vector<std::vector<P2>> chain(std::vector<std::array<P2, 2>> segments) {
   return out;
 }
 
+// A short stroke across the end of a seam's stretch, at `end`, coming from `from`.
+void end_tick(Canvas& c, P2 end, P2 from, Rgb colour) {
+  const double len = std::max(std::hypot(end.x - from.x, end.y - from.y), 1e-9);
+  const P2 normal{-(end.y - from.y) / len, (end.x - from.x) / len};
+  constexpr double kHalf = 4.5;
+  c.polyline({{end.x - normal.x * kHalf, end.y - normal.y * kHalf},
+              {end.x + normal.x * kHalf, end.y + normal.y * kHalf}},
+             colour, 1.4, false, "seam-end");
+}
+
+// The legend, in two columns of three lines from `at`, and a line below.
 void draw_legend(Canvas& c, P2 at) {
-  c.text({at.x, at.y}, "Legend", 11, kText, Anchor::Start, true, "legend");
-  double y = at.y + 16;
-  c.polyline({{at.x, y - 3}, {at.x + 40, y - 3}}, kSewColour, 2.2, false, "legend-sew");
-  c.text({at.x + 48, y}, "sew: closed with a sewing needle, before dressing", 9, kText,
+  constexpr double kRow = 16;
+  const double col = (kPageW - 2 * kMargin) / 2;
+  auto line = [&](int row, Rgb colour, double width, bool dashed, const char* cls,
+                  const std::string& what) {
+    const double y = at.y + row * kRow;
+    c.polyline({{at.x, y - 3}, {at.x + 40, y - 3}}, colour, width, dashed, cls);
+    c.text({at.x + 48, y}, what, 9, kText, Anchor::Start, false, "legend");
+  };
+  line(0, kSewColour, 2.2, false, "legend-sew",
+       "sew: closed with a sewing needle, before dressing");
+  line(1, kLaceColour, 2.2, true, "legend-lace",
+       "lace: laced shut after the garment is on the wearer");
+  line(2, kEdgeColour, 0.6, false, "legend-edge",
+       "edge of the fabric that stays open (not a seam)");
+  const double x = at.x + col;
+  double y = at.y;
+  c.circle({x + 20, y - 4}, 6.5, kWhite, kSewColour, 1.2);
+  c.text({x + 20, y - 1.4}, "7", 7, kSewColour, Anchor::Middle, true, "legend");
+  c.text({x + 48, y}, "seam 7: join the two stretches numbered 7, lowest number first", 9, kText,
          Anchor::Start, false, "legend");
-  y += 14;
-  c.polyline({{at.x, y - 3}, {at.x + 40, y - 3}}, kLaceColour, 2.2, true, "legend-lace");
-  c.text({at.x + 48, y}, "lace: laced shut after the garment is on the wearer", 9, kText,
+  y += kRow;
+  c.polyline({{x, y - 3}, {x + 40, y - 3}}, kSewColour, 2.0, false, "legend-sew-end");
+  end_tick(c, {x, y - 3}, {x + 40, y - 3}, kSewColour);
+  end_tick(c, {x + 40, y - 3}, {x, y - 3}, kSewColour);
+  c.text({x + 48, y}, "the ends of a stretch: join end to end, easing evenly between", 9, kText,
          Anchor::Start, false, "legend");
-  y += 14;
-  c.polyline({{at.x, y - 3}, {at.x + 40, y - 3}}, kEdgeColour, 0.6, false, "legend-edge");
-  c.text({at.x + 48, y}, "edge of the fabric that stays open (not a seam)", 9, kText, Anchor::Start,
-         false, "legend");
-  y += 16;
-  c.circle({at.x + 20, y - 4}, 6, kWhite, kSewColour, 1.2);
-  c.text({at.x + 20, y - 1}, "7", 7, kSewColour, Anchor::Middle, true, "legend");
-  c.text({at.x + 48, y}, "seam number: the two stretches with the same number are joined", 9, kText,
+  y += kRow;
+  c.circle({x + 20, y - 4}, 8.5, kWhite, kSewColour, 1.2);
+  c.text({x + 20, y - 1.4}, "7.2", 7, kSewColour, Anchor::Middle, true, "legend");
+  c.text({x + 48, y}, "part 2 of seam 7, where the seam passes to another piece", 9, kText,
          Anchor::Start, false, "legend");
-  y += 14;
-  c.text({at.x, y},
+  c.text({at.x, at.y + 3 * kRow + 2},
          "Pieces are drawn as they come off the machine: left to right = needles, bottom to top = "
          "rows, in the stitch size of the gauge.",
          9, kText, Anchor::Start, false, "legend");
@@ -100,20 +123,20 @@ void draw_cover(Canvas& c, const Model& m, const PageLayout& layout) {
   c.text({kMargin, kMargin + 14}, layout.title, 16, kText, Anchor::Start, true, "title");
   std::ostringstream summary;
   summary << m.layouts.size() << " piece" << (m.layouts.size() == 1 ? "" : "s") << ", "
-          << m.seams.size() << " seam" << (m.seams.size() == 1 ? "" : "s") << ": ";
+          << m.numbered << " seam" << (m.numbered == 1 ? "" : "s") << ": ";
   if (m.sewn > 0)
     summary << "sew 1" << (m.sewn > 1 ? "-" + std::to_string(m.sewn) : "") << " first";
   else
     summary << "nothing to sew";
-  const int laced = static_cast<int>(m.seams.size()) - m.sewn;
+  const int laced = m.numbered - m.sewn;
   if (laced > 0) {
     summary << ", then put the garment on the wearer and lace " << m.sewn + 1;
-    if (laced > 1) summary << "-" << m.seams.size();
+    if (laced > 1) summary << "-" << m.numbered;
   }
   summary << ".";
-  c.text({kMargin, kMargin + 34}, summary.str(), 10, kText, Anchor::Start, false, "summary");
-  draw_legend(c, {kMargin, kMargin + 60});
-  c.text({kMargin, kTableTop - 14}, "Order to close the seams", 11, kText, Anchor::Start, true,
+  c.text({kMargin, kMargin + 32}, summary.str(), 10, kText, Anchor::Start, false, "summary");
+  draw_legend(c, {kMargin, kMargin + 54});
+  c.text({kMargin, kTableTop - 13}, "Order to close the seams", 11, kText, Anchor::Start, true,
          "order-title");
   std::size_t next = 0;
   for (int page = 0; page < layout.table_pages; ++page) {
@@ -127,7 +150,7 @@ void draw_cover(Canvas& c, const Model& m, const PageLayout& layout) {
     for (int col = 0; col < kColumns && next < layout.lines.size(); ++col) {
       for (int row = 0; row < per_column && next < layout.lines.size(); ++row, ++next) {
         const std::string& line = layout.lines[next];
-        const bool lace = line.find(". lace") != std::string::npos;
+        const bool lace = line.find("  lace  ") != std::string::npos;
         c.text({kMargin + col * (kPageW - 2 * kMargin) / kColumns, top + row * kLine}, line, 8,
                line.rfind("--", 0) == 0 ? kLaceColour : (lace ? kLaceColour : kText), Anchor::Start,
                false, "order");
@@ -193,6 +216,12 @@ PieceLines piece_lines(const Model& m, const Placement& pl, const ToPage& to_pag
   return out;
 }
 
+// The radius of the circle around a seam's name on the pieces.
+double label_radius(const Seam& sm) {
+  const std::size_t n = sm.name().size();
+  return n > 2 ? 6.5 + 2.0 * static_cast<double>(n - 2) : 6.5;
+}
+
 // Where the number of seam `sm` goes on its side `which` (drawn on piece
 // pl.piece), clear of the numbers already `placed` on the page.
 Label place_label(const Model& m, const Placement& pl, const Seam& sm, int which,
@@ -213,8 +242,7 @@ Label place_label(const Model& m, const Placement& pl, const Seam& sm, int which
   std::stable_sort(by_distance.begin(), by_distance.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
   for (std::size_t k = 0; k < here.size(); ++k) here[k] = by_distance[k].second;
-  const std::string number = std::to_string(sm.number);
-  const double r = number.size() > 2 ? 8.5 : 6.5;
+  const double r = label_radius(sm);
   Label best;
   bool found = false;
   const std::size_t anchors = std::min<std::size_t>(here.size(), 8);
@@ -245,6 +273,38 @@ Label place_label(const Model& m, const Placement& pl, const Seam& sm, int which
   return best;
 }
 
+// Marks both ends of stretch `which` of seam `sm` where they lie on piece
+// pl.piece, so that the two stretches are matched end to end and not only
+// by their numbers: the end of its first side away from the second side,
+// and the end of its last side away from the one before (a stretch's sides
+// are in order along it).
+void mark_stretch_ends(Canvas& c, const Model& m, const Placement& pl, const Seam& sm, int which,
+                       const ToPage& to_page) {
+  const std::vector<SideRef>& list = sm.sides[at(which)];
+  if (list.empty()) return;
+  const Rgb colour = sm.lace ? kLaceColour : kSewColour;
+  // Tick at end `outer` (0: the side's first vertex, 1: its second) of `side`.
+  auto tick = [&](const SideRef& side, int outer) {
+    if (m.piece_of_face[at(side.face)] != pl.piece) return;
+    const FaceLayout& f = m.layouts[at(pl.piece)].faces[at(m.layout_index[at(side.face)])];
+    const auto seg = side_in_layout(m.mesh.faces[at(side.face)], f, side.side);
+    end_tick(c, to_page(seg[at(outer)]), to_page(seg[at(1 - outer)]), colour);
+  };
+  // The end of `side` that `neighbour` does not share.
+  auto away_from = [&](const SideRef& side, const SideRef& neighbour) {
+    const auto v = side_vertices(m, side);
+    const auto w = side_vertices(m, neighbour);
+    return v[0] == w[0] || v[0] == w[1] ? 1 : 0;
+  };
+  if (list.size() == 1) {
+    tick(list.front(), 0);
+    tick(list.front(), 1);
+    return;
+  }
+  tick(list.front(), away_from(list.front(), list[1]));
+  tick(list.back(), away_from(list.back(), list[list.size() - 2]));
+}
+
 // A piece: its caption, its stitches, its open edges, its seams and their
 // numbers (added to the page's `placed`).
 void draw_piece(Canvas& c, const Model& m, const Placement& pl, std::vector<Label>& placed) {
@@ -269,6 +329,7 @@ void draw_piece(Canvas& c, const Model& m, const Placement& pl, std::vector<Labe
     const Rgb colour = sm.lace ? kLaceColour : kSewColour;
     for (const auto& line : chain(segs))
       c.polyline(line, colour, 2.0, sm.lace, sm.lace ? "seam-lace" : "seam-sew");
+    mark_stretch_ends(c, m, pl, sm, key.second, to_page);
     if (sm.piece[at(key.second)] != pl.piece) continue;
     const Label best = place_label(m, pl, sm, key.second, to_page, placed);
     placed.push_back(best);
@@ -280,7 +341,8 @@ void draw_piece(Canvas& c, const Model& m, const Placement& pl, std::vector<Labe
     if (std::hypot(l.centre.x - l.anchor.x, l.centre.y - l.anchor.y) > 0.5)
       c.polyline({l.anchor, l.centre}, colour, 0.6, false, "leader");
     c.circle(l.centre, l.radius, kWhite, colour, 1.2);
-    c.text({l.centre.x, l.centre.y + 2.6}, std::to_string(sm.number), 7, colour, Anchor::Middle,
+    const std::string name = sm.name();
+    c.text({l.centre.x, l.centre.y + 2.6}, name, name.size() > 3 ? 6.5 : 7, colour, Anchor::Middle,
            true, sm.lace ? "seam-label lace" : "seam-label sew");
   }
 }
@@ -289,15 +351,20 @@ void draw_piece(Canvas& c, const Model& m, const Placement& pl, std::vector<Labe
 
 void draw_pages(Canvas& c, const Model& m, const PageLayout& layout) {
   draw_cover(c, m, layout);
-  for (int page = 0; page < layout.piece_pages; ++page) {
-    c.next_page();
+  // The pieces: below the closing order on its last page when they fit
+  // there, then on pages of their own.
+  for (int page = layout.table_pages - 1; page < layout.pages(); ++page) {
+    if (page >= layout.table_pages) c.next_page();
+    const bool first = page == layout.table_pages - 1;
+    const bool any = std::any_of(layout.places.begin(), layout.places.end(),
+                                 [&](const Placement& pl) { return pl.page == page; });
+    if (!any) continue;
+    const double top = first ? layout.pieces_top : kMargin;
+    c.text({kMargin, top + 10}, first ? "Pieces" : "Pieces (continued)", 11, kText, Anchor::Start,
+           true, "page-title");
     std::vector<Label> placed;  // seam numbers on this page
-    c.text({kMargin, kMargin + 10},
-           "Pieces (page " + std::to_string(page + 1) + " of " +
-               std::to_string(layout.piece_pages) + ")",
-           11, kText, Anchor::Start, true, "page-title");
     for (const Placement& pl : layout.places) {
-      if (pl.page == layout.table_pages + page) draw_piece(c, m, pl, placed);
+      if (pl.page == page) draw_piece(c, m, pl, placed);
     }
   }
 }

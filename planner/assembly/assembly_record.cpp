@@ -1,4 +1,5 @@
 // assembly.json: the figures of the assembly guide (planner/pipeline.hpp).
+#include <cmath>
 #include <filesystem>
 
 #include "planner/common/json_file.hpp"
@@ -12,8 +13,11 @@ std::string write_assembly_record(const std::string& dir, const AssemblySummary&
                           {"summary",
                            {{"pieces", summary.pieces},
                             {"seams", summary.seams},
+                            {"parts", summary.parts},
                             {"sewn", summary.sewn},
                             {"laced", summary.laced},
+                            {"sewn_mm", std::round(summary.sewn_mm * 10) / 10},
+                            {"laced_mm", std::round(summary.laced_mm * 10) / 10},
                             {"arcs", summary.arcs},
                             {"pdf_pages", summary.pdf_pages}}}});
 }

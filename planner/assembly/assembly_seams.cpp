@@ -243,30 +243,51 @@ std::vector<Seam> split_arc(std::array<std::vector<Item>, 2>& items) {
 
 }  // namespace
 
-ArcSeams arc_seams(Model& m, const std::unordered_map<std::uint64_t, int>& arc_of_key,
-                   const std::map<int, ArcLine>& lines) {
+ArcSeams chain_seams(Model& m, const std::unordered_map<std::uint64_t, int>& arc_of_key,
+                     const std::map<int, ArcLine>& lines) {
   ArcItems arc_items = place_on_arcs(m, arc_of_key, lines);
   ArcSeams out;
-  for (ArcInfo& info : m.arcs) {
-    auto found = arc_items.find(info.id);
-    if (found == arc_items.end()) continue;
-    std::vector<Seam> merged = split_arc(found->second);
-    int part_no = 0;
+  for (const SeamChain& chain : m.chains) {
+    // The chain's two sides, each side's items placed along the whole
+    // chain: an arc walked backwards has its arc length and its sides
+    // turned round (the disc's boundary runs along one copy of the chain
+    // and back along the other, through every vertex where it passes).
+    std::array<std::vector<Item>, 2> items;
+    double offset = 0;
+    for (std::size_t k = 0; k < chain.arcs.size(); ++k) {
+      const int arc = chain.arcs[k];
+      const auto line = lines.find(arc);
+      const double length =
+          line == lines.end() || line->second.start.empty() ? 0 : line->second.start.back();
+      const auto found = arc_items.find(arc);
+      if (found != arc_items.end()) {
+        for (int s = 0; s < 2; ++s) {
+          for (Item item : found->second[at(s)]) {
+            item.t = offset + (chain.reversed[k] ? length - item.t : item.t);
+            items[at(chain.reversed[k] ? 1 - s : s)].push_back(item);
+          }
+        }
+      }
+      offset += length;
+    }
+    std::vector<Seam> merged = split_arc(items);
+    std::vector<Seam> parts;
     for (Seam& seam : merged) {
       if (seam.sides[0].empty() || seam.sides[1].empty()) continue;
+      const ArcInfo& first = m.arcs[at(chain.arcs.front())];
       seam.kind = SeamKind::CutArc;
-      seam.arc = info.id;
-      seam.lace = info.lace;
-      seam.labelled = info.labelled;
-      seam.part = ++part_no;
-      (info.lace ? out.lace : out.sew).push_back(std::move(seam));
+      seam.arc = first.id;
+      seam.arcs = chain.arcs;
+      seam.lace = first.lace;
+      seam.labelled = first.labelled;
+      seam.part = static_cast<int>(parts.size()) + 1;
+      parts.push_back(std::move(seam));
     }
-    for (auto* list : {&out.sew, &out.lace}) {
-      for (Seam& s : *list) {
-        if (s.kind == SeamKind::CutArc && s.arc == info.id) s.parts = part_no;
-      }
+    for (Seam& seam : parts) {
+      seam.parts = static_cast<int>(parts.size());
+      (seam.lace ? out.lace : out.sew).push_back(std::move(seam));
     }
-    info.seams = part_no;
+    for (const int arc : chain.arcs) m.arcs[at(arc)].seams = static_cast<int>(parts.size());
   }
   return out;
 }
@@ -274,28 +295,39 @@ ArcSeams arc_seams(Model& m, const std::unordered_map<std::uint64_t, int>& arc_o
 void number_seams(Model& m, std::vector<Seam> cut_seams, std::vector<Seam> wale, ArcSeams arcs) {
   // Closing order: first what rebuilds the knit sheet (scheduler cuts, wale
   // seams), then the arcs to sew, all before dressing; the laced arcs last,
-  // on the wearer (§5).
+  // on the wearer (§5). The parts of a seam follow each other and share its
+  // number.
   for (auto* list : {&cut_seams, &wale, &arcs.sew}) {
     for (Seam& s : *list) {
       if (!s.lace) m.seams.push_back(std::move(s));
     }
   }
-  m.sewn = static_cast<int>(m.seams.size());
+  const std::size_t sewn_parts = m.seams.size();
   for (auto* list : {&cut_seams, &wale, &arcs.lace}) {
     for (Seam& s : *list) {
       if (s.lace) m.seams.push_back(std::move(s));
     }
   }
+  int number = 0;
   for (std::size_t i = 0; i < m.seams.size(); ++i) {
     Seam& seam = m.seams[i];
-    seam.number = static_cast<int>(i) + 1;
+    if (seam.part == 1) ++number;
+    seam.number = number;
+    if (i + 1 == sewn_parts) m.sewn = number;
     for (int s = 0; s < 2; ++s) {
       const auto& list = seam.sides[at(s)];
       seam.label_at[at(s)] = list[list.size() / 2];
       seam.piece[at(s)] = m.piece_of_face[at(seam.label_at[at(s)].face)];
-      for (const SideRef& side : seam.sides[at(s)]) m.seam_of_side[side] = static_cast<int>(i);
+      double length = 0;
+      for (const SideRef& side : list) {
+        m.seam_of_side[side] = static_cast<int>(i);
+        const auto v = side_vertices(m, side);
+        length += (m.mesh.positions[v[1]] - m.mesh.positions[v[0]]).norm();
+      }
+      seam.stretch_mm[at(s)] = length;
     }
   }
+  m.numbered = number;
 }
 
 }  // namespace planner::assembly

@@ -37,15 +37,19 @@ struct ArcSeams {
   std::vector<Seam> lace;
 };
 
-// The seams along the cut-arcs: every boundary side on an arc (`arc_of_key`,
-// from the stitch mesh's `# arc` lines) placed along the arc's line, split
-// where either side passes from one piece to another. Sets m.arcs[i].seams.
-// Throws Failure (A004) for a side on an arc the cut does not have.
-ArcSeams arc_seams(Model& m, const std::unordered_map<std::uint64_t, int>& arc_of_key,
-                   const std::map<int, ArcLine>& lines);
+// The seams along the cut-arcs, one per chain of m.chains (the arcs chained
+// by planner/cut/seam_chains.hpp): every boundary side on an arc
+// (`arc_of_key`, from the stitch mesh's `# arc` lines) placed along its
+// arc's line, and so along its chain, split into parts where either side
+// passes from one piece to another. Sets m.arcs[i].seams. Throws Failure
+// (A004) for a side on an arc the cut does not have.
+ArcSeams chain_seams(Model& m, const std::unordered_map<std::uint64_t, int>& arc_of_key,
+                     const std::map<int, ArcLine>& lines);
 
 // Puts the seams in closing order into m.seams and numbers them: the ones to
-// sew (scheduler cuts, wale seams, arcs to sew), then the laced ones (§5).
+// sew (scheduler cuts, wale seams, arcs to sew), then the laced ones (§5);
+// the parts of a seam share its number. Sets m.numbered, m.sewn, the sides'
+// seams and each stretch's length.
 void number_seams(Model& m, std::vector<Seam> cut_seams, std::vector<Seam> wale, ArcSeams arcs);
 
 }  // namespace planner::assembly

@@ -160,28 +160,17 @@ const char* kind_name(assembly::SeamKind kind) {
 void add_seams(PlanPageData& page, const assembly::Model& m) {
   using assembly::SideRef;
   const double cw = m.mesh.course_mm, ww = m.mesh.wale_mm;
-  // The guide's own line for each seam ("3. lace  piece 2 to piece 2  cut-arc 0, ...").
-  const assembly::PageLayout pages = assembly::lay_out_pages(m, "");
-  std::map<int, std::string> line_of;
-  for (const std::string& line : pages.lines) {
-    const auto dot = line.find(". ");
-    if (dot == std::string::npos || dot == 0 || line.rfind("--", 0) == 0) continue;
-    try {
-      line_of[std::stoi(line.substr(0, dot))] = line;
-    } catch (const std::exception&) {
-    }
-  }
   auto layout_of = [&](int face) -> const FaceLayout& {
     return m.layouts[at(m.piece_of_face[at(face)])].faces[at(m.layout_index[at(face)])];
   };
   json seams = json::array();
   for (const assembly::Seam& s : m.seams) {
-    json seam = {{"number", s.number},
-                 {"label", s.lace ? "lace" : "sew"},
-                 {"labelled", s.labelled},
-                 {"kind", kind_name(s.kind)},
-                 {"text", line_of.count(s.number) ? line_of[s.number] : ""}};
-    if (s.kind != assembly::SeamKind::WaleSeam) seam["source"] = s.arc;
+    // The guide's own line for the seam ("3  lace  piece 2 to piece 2  cut-arcs 0+4, ...").
+    json seam = {
+        {"number", s.number},     {"name", s.name()},          {"label", s.lace ? "lace" : "sew"},
+        {"labelled", s.labelled}, {"kind", kind_name(s.kind)}, {"text", assembly::seam_line(m, s)}};
+    if (s.kind == assembly::SeamKind::ScheduleCut) seam["source"] = s.arc;
+    if (s.kind == assembly::SeamKind::CutArc) seam["source"] = s.arcs;
     if (s.parts > 1) seam["part"] = {s.part, s.parts};
     double length = 0;
     json p3 = json::array();
@@ -493,7 +482,13 @@ std::string write_plan_page(const fs::path& dir, PlanPageSummary* summary) {
   if (!failure.empty()) return failure;
   if (summary) {
     summary->bytes = bytes;
-    summary->seams = static_cast<int>(data.meta["seams"].size());
+    // A seam in parts counts once.
+    int seams = 0;
+    for (const json& seam : data.meta["seams"]) {
+      const json part = seam.value("part", json());
+      seams += !part.is_array() || part.at(0) == 1;
+    }
+    summary->seams = seams;
     summary->pieces = static_cast<int>(data.meta["pieces"].size());
     summary->wearer = data.meta.contains("wearer");
   }

@@ -44,7 +44,7 @@ inline constexpr std::size_t kMaxPageSourceBytes = 24u << 20;
 
 struct PlanPageSummary {
   std::size_t bytes = 0;  // size of index.html
-  int seams = 0;          // seams (or cut-arcs, before the schedule) shown
+  int seams = 0;          // seams (or cut-arcs, before the schedule) shown; parts count once
   int pieces = 0;
   bool wearer = false;
 };

@@ -323,6 +323,19 @@ TEST(DemoTest, RunsThePipelineOnItsOwnShape) {
   ASSERT_GE(cuts["arcs"].size(), 1u);
   for (const json& arc : cuts["arcs"])
     EXPECT_TRUE(arc["label"] == "sew" || arc["label"] == "lace") << arc.dump();
+  // The guide's seams in report.json and the plan's summary; no more pages
+  // than pieces to lay out (docs/assembly.md, "How the pieces are laid out").
+  const json report = read_json(dir / "demo/report.json");
+  const json& guide = report["assembly"];
+  EXPECT_LE(guide["pdf_pages"].get<int>(), std::max(guide["pieces"].get<int>(), 1));
+  EXPECT_EQ(guide["seams"].get<int>(), guide["sewn"].get<int>() + guide["laced"].get<int>());
+  EXPECT_GT(guide["sewn_mm"].get<double>() + guide["laced_mm"].get<double>(), 0.0);
+  const json& summary = report["plan"]["summary"];
+  EXPECT_EQ(summary["seams_sewn"], guide["sewn"]);
+  EXPECT_EQ(summary["seams_laced"], guide["laced"]);
+  EXPECT_EQ(summary["seams_sewn_mm"], guide["sewn_mm"]);
+  EXPECT_EQ(summary["seams_laced_mm"], guide["laced_mm"]);
+  EXPECT_FALSE(cuts["seams"].empty());
   fs::remove_all(dir);
 }
 

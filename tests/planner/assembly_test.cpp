@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -103,18 +107,123 @@ int pdf_pages(const std::string& pdf) {
   return n;
 }
 
-// The seam numbers on the pieces: <text class="seam-label sew|lace" ...>N</text>.
-std::vector<std::pair<std::string, int>> seam_labels(const std::string& svg) {
-  std::vector<std::pair<std::string, int>> found;
+// The seam names on the pieces: <text class="seam-label sew|lace" ...>N</text>
+// or, for part P of seam N, N.P.
+std::vector<std::pair<std::string, std::string>> seam_labels(const std::string& svg) {
+  std::vector<std::pair<std::string, std::string>> found;
   const std::string open = "<text class=\"seam-label ";
   for (std::size_t at = svg.find(open); at != std::string::npos; at = svg.find(open, at + 1)) {
     const std::size_t style_end = svg.find('"', at + open.size());
     const std::size_t text_start = svg.find('>', at) + 1;
     const std::size_t text_end = svg.find("</text>", text_start);
     found.emplace_back(svg.substr(at + open.size(), style_end - at - open.size()),
-                       std::stoi(svg.substr(text_start, text_end - text_start)));
+                       svg.substr(text_start, text_end - text_start));
   }
   return found;
+}
+
+// The lines of the closing order: <text class="order" ...>LINE</text>.
+std::vector<std::string> order_lines(const std::string& svg) {
+  std::vector<std::string> lines;
+  const std::string open = "<text class=\"order\"";
+  for (std::size_t at = svg.find(open); at != std::string::npos; at = svg.find(open, at + 1)) {
+    const std::size_t text_start = svg.find('>', at) + 1;
+    lines.push_back(svg.substr(text_start, svg.find("</text>", text_start) - text_start));
+  }
+  return lines;
+}
+
+// The cut-arcs a line of the closing order names ("cut-arc 3" or
+// "cut-arcs 3+5+7"), in order.
+std::vector<int> arcs_of_line(const std::string& line) {
+  std::vector<int> arcs;
+  std::size_t at = line.find("cut-arc");
+  if (at == std::string::npos) return arcs;
+  at = line.find(' ', at) + 1;
+  while (at < line.size() && std::isdigit(static_cast<unsigned char>(line[at]))) {
+    std::size_t end = at;
+    while (end < line.size() && std::isdigit(static_cast<unsigned char>(line[end]))) ++end;
+    arcs.push_back(std::stoi(line.substr(at, end - at)));
+    at = end < line.size() && line[end] == '+' ? end + 1 : line.size();
+  }
+  return arcs;
+}
+
+// The end vertices of every arc of cuts.json.
+std::vector<std::array<int, 2>> arc_ends(const json& cuts) {
+  std::vector<std::array<int, 2>> ends;
+  for (const json& arc : cuts.at("arcs")) {
+    const json& edges = arc.at("edges");
+    ends.push_back({edges.front().at(0).get<int>(), edges.back().at(1).get<int>()});
+  }
+  return ends;
+}
+
+// Where two arcs meet end to end at a vertex no other arc ends at.
+struct Joints {
+  int same_label = 0;
+  int two_labels = 0;
+  std::array<int, 2> first_same{{-1, -1}};  // the arcs of the first same-label joint
+};
+
+// Checks the chaining of cuts.json's arcs against the closing order `lines`
+// of the guide: every arc in exactly one seam; two arcs of one label that
+// meet end to end where no other arc ends are one seam, arcs of two labels
+// never are (cuts.json's `seam` and the seam number of the guide's line
+// naming them); fewer seams than arcs where there is such a joint;
+// `seams` consistent with the arcs.
+Joints expect_chained_by_label(const json& cuts, const std::vector<std::string>& lines) {
+  std::map<int, std::set<int>> seam_lines_of_arc;  // arc -> the seam numbers naming it
+  for (const std::string& line : lines) {
+    for (const int arc : arcs_of_line(line)) {
+      // "cut-arcs N+M (...): nothing to join" stands for a seam of its own.
+      seam_lines_of_arc[arc].insert(std::isdigit(static_cast<unsigned char>(line[0]))
+                                        ? std::stoi(line)
+                                        : -arcs_of_line(line).front() - 1);
+    }
+  }
+  const json& arcs = cuts.at("arcs");
+  for (const json& arc : arcs) {
+    const int id = arc.at("id").get<int>();
+    EXPECT_EQ(seam_lines_of_arc[id].size(), 1u) << "cut-arc " << id << " is not in one seam";
+  }
+  const auto ends = arc_ends(cuts);
+  std::map<int, std::vector<int>> arcs_at;  // vertex -> arcs ending there (twice for a loop)
+  for (std::size_t a = 0; a < ends.size(); ++a) {
+    for (const int v : ends[a]) arcs_at[v].push_back(static_cast<int>(a));
+  }
+  Joints joints;
+  for (const auto& [vertex, at_vertex] : arcs_at) {
+    if (at_vertex.size() != 2 || at_vertex[0] == at_vertex[1]) continue;
+    const json& a = arcs[static_cast<std::size_t>(at_vertex[0])];
+    const json& b = arcs[static_cast<std::size_t>(at_vertex[1])];
+    const bool same_label = a.at("label") == b.at("label");
+    EXPECT_EQ(a.at("seam") == b.at("seam"), same_label) << "vertex " << vertex;
+    EXPECT_EQ(seam_lines_of_arc[at_vertex[0]] == seam_lines_of_arc[at_vertex[1]], same_label)
+        << "arcs " << at_vertex[0] << " and " << at_vertex[1] << " meet at vertex " << vertex;
+    if (same_label) {
+      if (joints.same_label++ == 0) joints.first_same = {at_vertex[0], at_vertex[1]};
+    } else {
+      ++joints.two_labels;
+    }
+  }
+  const json& chains = cuts.at("seams");
+  if (joints.same_label > 0) {
+    EXPECT_LT(chains.size(), arcs.size());
+  }
+  std::size_t chained = 0;
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    double length = 0;
+    for (const json& a : chains[c].at("arcs")) {
+      EXPECT_EQ(arcs.at(a.get<std::size_t>()).at("seam"), c);
+      EXPECT_EQ(arcs.at(a.get<std::size_t>()).at("label"), chains[c].at("label"));
+      length += arcs.at(a.get<std::size_t>()).at("length_mm").get<double>();
+      ++chained;
+    }
+    EXPECT_NEAR(chains[c].at("length_mm").get<double>(), length, 0.01);
+  }
+  EXPECT_EQ(chained, arcs.size());
+  return joints;
 }
 
 TEST(AssemblyTest, GuideOfARealPlanFolderShowsEveryPieceAndSeam) {
@@ -141,53 +250,68 @@ TEST(AssemblyTest, GuideOfARealPlanFolderShowsEveryPieceAndSeam) {
   std::string why;
   EXPECT_TRUE(tags_balance(svg, &why)) << why;
   const int pages = count(svg, "<g class=\"page\"");
-  EXPECT_GE(pages, 2);  // the cover page and at least one page of pieces
+  EXPECT_GE(pages, 1);  // the closing order and the pieces share pages where they fit
   EXPECT_EQ(pdf_pages(pdf), pages);
-  EXPECT_NE(r.out.find(", " + std::to_string(pages) + " pages;"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(", " + std::to_string(pages) + (pages == 1 ? " page;" : " pages;")),
+            std::string::npos)
+      << r.out;
   const std::string png = read_file(dir / "assembly-3d.png");
   EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
 
   // One caption per piece of report.json.
   EXPECT_EQ(count(svg, "class=\"piece-caption\""), static_cast<int>(pieces));
 
-  // Every seam number exactly twice on the pieces; sew numbered before lace;
-  // one line per seam in the closing order.
-  std::map<int, std::pair<std::string, int>> seen;
-  for (const auto& [style, number] : seam_labels(svg)) {
-    auto& entry = seen[number];
+  // Every seam (or part) name exactly twice on the pieces; numbers 1..n,
+  // sew numbered before lace; one line per name in the closing order.
+  std::map<std::string, std::pair<std::string, int>> seen;
+  std::set<int> numbers;
+  for (const auto& [style, name] : seam_labels(svg)) {
+    auto& entry = seen[name];
     if (entry.second > 0) {
-      EXPECT_EQ(entry.first, style) << "seam " << number;
+      EXPECT_EQ(entry.first, style) << "seam " << name;
     }
     entry.first = style;
     ++entry.second;
+    numbers.insert(std::stoi(name));
   }
   ASSERT_FALSE(seen.empty());
-  EXPECT_EQ(seen.begin()->first, 1);
-  EXPECT_EQ(seen.rbegin()->first, static_cast<int>(seen.size()));
+  EXPECT_EQ(*numbers.begin(), 1);
+  EXPECT_EQ(*numbers.rbegin(), static_cast<int>(numbers.size()));
   int last_sew = 0;
-  int first_lace = static_cast<int>(seen.size()) + 1;
-  for (const auto& [number, entry] : seen) {
-    EXPECT_EQ(entry.second, 2) << "seam " << number << " is labelled " << entry.second << " times";
-    if (entry.first == "sew") last_sew = std::max(last_sew, number);
-    if (entry.first == "lace") first_lace = std::min(first_lace, number);
-    EXPECT_NE(svg.find(">" + std::to_string(number) + ". " + entry.first + "  piece "),
-              std::string::npos)
-        << "seam " << number << " is missing from the closing order";
+  int first_lace = static_cast<int>(numbers.size()) + 1;
+  const std::vector<std::string> lines = order_lines(svg);
+  for (const auto& [name, entry] : seen) {
+    EXPECT_EQ(entry.second, 2) << "seam " << name << " is labelled " << entry.second << " times";
+    if (entry.first == "sew") last_sew = std::max(last_sew, std::stoi(name));
+    if (entry.first == "lace") first_lace = std::min(first_lace, std::stoi(name));
+    const std::string head = name + "  " + entry.first + "  piece ";
+    EXPECT_EQ(std::count_if(lines.begin(), lines.end(),
+                            [&](const std::string& l) { return l.rfind(head, 0) == 0; }),
+              1)
+        << "seam " << name << " is not once in the closing order";
   }
   EXPECT_LT(last_sew, first_lace);
+  // Both ends of both stretches of every seam or part are marked (and the
+  // two ends drawn in the legend).
+  EXPECT_EQ(count(svg, "class=\"seam-end\""), 2 + 4 * static_cast<int>(seen.size()));
 
-  // Every arc of cuts.json is listed, with its label; the labels' styles
-  // appear on the pieces.
-  std::set<std::string> labels;
-  for (const json& arc : cuts.at("arcs")) {
-    const std::string id = std::to_string(arc.at("id").get<int>());
-    const std::string arc_label = arc.at("label").get<std::string>();
-    labels.insert(arc_label);
-    EXPECT_TRUE(svg.find("  cut-arc " + id + " ") != std::string::npos ||
-                svg.find("  cut-arc " + id + ",") != std::string::npos ||
-                svg.find(">cut-arc " + id + " (") != std::string::npos)
-        << "cut-arc " << id << " is not in the guide";
+  // Stitch sides along each stretch, and how to ease them when they differ.
+  for (const std::string& line : lines) {
+    const std::size_t at = line.find(" stitch sides");
+    if (at == std::string::npos) continue;
+    const std::size_t comma = line.rfind(", ", at);
+    int a = 0, b = 0;
+    ASSERT_EQ(std::sscanf(line.c_str() + comma + 2, "%d / %d", &a, &b), 2) << line;
+    EXPECT_GT(a, 0) << line;
+    EXPECT_GT(b, 0) << line;
+    EXPECT_EQ(line.find(": ease evenly") != std::string::npos, a != b) << line;
   }
+
+  // Every arc of cuts.json is listed once; the arcs are chained into seams.
+  const Joints joints = expect_chained_by_label(cuts, lines);
+  EXPECT_GT(joints.same_label, 0);  // a cut whose arcs chain: fewer seams than arcs
+  std::set<std::string> labels;
+  for (const json& arc : cuts.at("arcs")) labels.insert(arc.at("label").get<std::string>());
   for (const std::string& l : labels) {
     EXPECT_GT(count(svg, "class=\"seam-" + l + "\""), 0) << l;
     EXPECT_GT(count(svg, "class=\"seam-label " + l + "\""), 0) << l;
@@ -209,8 +333,35 @@ TEST(AssemblyTest, GuideOfARealPlanFolderShowsEveryPieceAndSeam) {
   planner::AssemblySummary summary;
   EXPECT_EQ(planner::write_assembly_guide(dir, "", &summary), "");
   EXPECT_EQ(summary.pieces, static_cast<int>(pieces));
-  EXPECT_EQ(summary.seams, static_cast<int>(seen.size()));
+  EXPECT_EQ(summary.seams, static_cast<int>(numbers.size()));
+  EXPECT_EQ(summary.parts, static_cast<int>(seen.size()));
   EXPECT_EQ(summary.sewn, last_sew);
+  EXPECT_EQ(summary.laced, summary.seams - last_sew);
+  EXPECT_GT(summary.sewn_mm + summary.laced_mm, 0);
+  // No more pages than pieces: the closing order and the pieces share pages.
+  EXPECT_LE(summary.pdf_pages, std::max(summary.pieces, 1));
+  // assembly.json (and so report.json's `assembly`) carries the same figures.
+  const json guide = json::parse(read_file(dir / "assembly.json")).at("summary");
+  EXPECT_EQ(guide.at("seams"), summary.seams);
+  EXPECT_NEAR(guide.at("sewn_mm").get<double>(), summary.sewn_mm, 0.05);
+  EXPECT_NEAR(guide.at("laced_mm").get<double>(), summary.laced_mm, 0.05);
+
+  // Two arcs that made one seam, given two labels, make two seams.
+  const fs::path wear = dir / "wearability.json";
+  json relabelled = json::parse(read_file(wear));
+  json& arc = relabelled.at("arcs").at(static_cast<std::size_t>(joints.first_same[0]));
+  arc["label"] = arc.at("label") == "sew" ? "lace" : "sew";
+  write_file(wear, relabelled.dump());
+  const auto split = run_wearknit("assembly '" + dir.string() + "' -q");
+  ASSERT_EQ(split.exit_code, 0) << split.err;
+  const json split_cuts = json::parse(read_file(dir / "cuts.json"));
+  const auto& split_arcs = split_cuts.at("arcs");
+  EXPECT_NE(split_arcs.at(static_cast<std::size_t>(joints.first_same[0])).at("seam"),
+            split_arcs.at(static_cast<std::size_t>(joints.first_same[1])).at("seam"));
+  const Joints after =
+      expect_chained_by_label(split_cuts, order_lines(read_file(dir / "assembly.svg")));
+  EXPECT_EQ(after.two_labels, joints.two_labels + 1);
+  EXPECT_EQ(split_cuts.at("seams").size(), cuts.at("seams").size() + 1);
   EXPECT_EQ(summary.arcs, static_cast<int>(cuts.at("arcs").size()));
   EXPECT_EQ(summary.pdf_pages, pages);
   fs::remove_all(dir);

@@ -75,28 +75,42 @@ TEST_F(PlanPageTest, SeamsMatchTheAssemblyGuide) {
   const planner::viewer::PlanPageData page = planner::viewer::collect_plan_page(*dir_);
   const json assembly = json::parse(read_file(*dir_ / "assembly.json")).at("summary");
   const json& seams = page.meta.at("seams");
-  ASSERT_EQ(static_cast<int>(seams.size()), assembly.at("seams").get<int>());
+  // One entry per seam or part of a seam, as the guide draws them.
+  ASSERT_EQ(static_cast<int>(seams.size()), assembly.at("parts").get<int>());
   EXPECT_EQ(page.meta.at("sewn"), assembly.at("sewn"));
   EXPECT_EQ(static_cast<int>(page.meta.at("pieces").size()), assembly.at("pieces").get<int>());
-  // Numbered 1..n in closing order, the sewn ones first, as in the guide;
-  // each names both its pieces with their stitch sides.
+  // Numbered 1..n in closing order, the sewn ones first, the parts of a
+  // seam in a row, as in the guide; each names both its pieces with their
+  // stitch sides.
   const int sewn = assembly.at("sewn").get<int>();
   const std::string svg = read_file(*dir_ / "assembly.svg");
+  int number = 0;
   for (std::size_t i = 0; i < seams.size(); ++i) {
     const json& s = seams[i];
-    EXPECT_EQ(s.at("number").get<int>(), static_cast<int>(i) + 1);
-    EXPECT_EQ(s.at("label"), static_cast<int>(i) < sewn ? "sew" : "lace");
+    const int part = s.contains("part") ? s.at("part").at(0).get<int>() : 1;
+    if (part == 1) ++number;
+    EXPECT_EQ(s.at("number").get<int>(), number);
+    const std::string name =
+        std::to_string(number) + (s.contains("part") ? "." + std::to_string(part) : "");
+    EXPECT_EQ(s.at("name"), name);
+    EXPECT_EQ(s.at("label"), number <= sewn ? "sew" : "lace");
     const std::string line = s.at("text").get<std::string>();
-    EXPECT_EQ(line.rfind(std::to_string(i + 1) + ". " + s.at("label").get<std::string>(), 0), 0u)
+    EXPECT_EQ(line.rfind(name + "  " + s.at("label").get<std::string>() + "  piece ", 0), 0u)
         << line;
-    EXPECT_NE(svg.find(line), std::string::npos) << "not a line of the guide: " << line;
+    EXPECT_NE(svg.find(">" + line + "<"), std::string::npos) << "not a line of the guide: " << line;
     ASSERT_EQ(s.at("sides").size(), 2u);
     for (const json& side : s.at("sides")) {
       EXPECT_GE(side.at("piece").get<int>(), 1);
       EXPECT_EQ(side.at("flat").size() % 5, 0u);
     }
+    EXPECT_NE(
+        line.find(", " + std::to_string(s.at("sides")[0].at("stitch_sides").get<int>()) + " / " +
+                  std::to_string(s.at("sides")[1].at("stitch_sides").get<int>()) + " stitch sides"),
+        std::string::npos)
+        << line;
     EXPECT_GT(s.at("length_mm").get<double>(), 0);
   }
+  EXPECT_EQ(number, assembly.at("seams").get<int>());
   // The stitch mesh with its face types, and every piece's figures.
   EXPECT_EQ(page.meta.at("garment").at("kind"), "stitch mesh");
   int faces = 0;

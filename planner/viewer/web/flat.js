@@ -146,7 +146,7 @@ wk.FlatView = class {
         // The number at the middle of the stretch.
         const k = 5 * Math.floor(f.length / 10);
         const m = this.toScreen(f[k], (f[k + 1] + f[k + 3]) / 2, (f[k + 2] + f[k + 4]) / 2);
-        numbers.push({ x: m[0], y: m[1], text: String(seam.number), colour, on });
+        numbers.push({ x: m[0], y: m[1], text: seam.name || String(seam.number), colour, on });
       }
     }
     ctx.textAlign = "center";

@@ -30,6 +30,8 @@ wk.start(async function main() {
   const report = meta.report || {};
   const plan = (meta.plan && meta.plan.plan) || report.plan || null;
   const seamWord = meta.seam_kind === "cut-arc" ? "cut-arc" : "seam";
+  // A seam's name as the guide draws it: its number, and its part (4.2) for a seam in parts.
+  const seamName = (s) => s.name || String(s.number);
 
   // ---- Layout ----------------------------------------------------------------
   const app = document.getElementById("app");
@@ -37,10 +39,12 @@ wk.start(async function main() {
   if (meta.garment) summary.push(wk.fmt(meta.garment.faces) + " " + (meta.garment.kind === "stitch mesh" ? "stitches" : "faces"));
   if (pieces.length) summary.push(pieces.length + " piece" + (pieces.length === 1 ? "" : "s"));
   if (seams.length) {
-    const open = seams.filter((s) => s.labelled === false).length;
-    const laced = seams.filter((s) => s.labelled !== false && s.label === "lace").length;
-    const sewn = seams.length - laced - open;
-    summary.push(seams.length + " " + seamWord + "s (" + sewn + " sew, " + laced + " lace" + (open ? ", " + open + " not labelled: no wearability stage" : "") + ")");
+    // A seam in parts (4.1, 4.2, ...) counts once.
+    const whole = seams.filter((s) => !s.part || s.part[0] === 1);
+    const open = whole.filter((s) => s.labelled === false).length;
+    const laced = whole.filter((s) => s.labelled !== false && s.label === "lace").length;
+    const sewn = whole.length - laced - open;
+    summary.push(whole.length + " " + seamWord + "s (" + sewn + " sew, " + laced + " lace" + (open ? ", " + open + " not labelled: no wearability stage" : "") + ")");
   }
   app.append(wk.el("header", { class: "wk-top" },
     wk.el("h1", {}, "wearknit plan: " + meta.folder),
@@ -125,7 +129,7 @@ wk.start(async function main() {
       return { index: i, colour: wk.rgb(css), css, segments: Float32Array.from(s.p3 || []) };
     });
     scene.labels = seams.filter((s) => s.at).map((s) => ({
-      index: seams.indexOf(s), text: String(s.number), colour: seamCss(s),
+      index: seams.indexOf(s), text: seamName(s), colour: seamCss(s),
       at: s.at.slice(0, 3), normal: s.at.slice(3, 6),
     }));
     scene.showSeams = true;
@@ -218,11 +222,11 @@ wk.start(async function main() {
   }
 
   // ---- Seams ------------------------------------------------------------------
-  const seamTitle = (s) => (seamWord === "cut-arc" ? "cut-arc " : "seam ") + s.number + ": " +
+  const seamTitle = (s) => (seamWord === "cut-arc" ? "cut-arc " : "seam ") + seamName(s) + ": " +
     (s.labelled === false ? "not labelled" : s.label);
   const listRows = seams.map((s, i) => {
     const row = wk.el("button", { type: "button", class: "seam-row " + s.label },
-      wk.el("b", {}, String(s.number)), " " + (s.labelled === false ? "—" : s.label) + " · " +
+      wk.el("b", {}, seamName(s)), " " + (s.labelled === false ? "—" : s.label) + " · " +
       wk.fmt(s.length_mm, 0) + " mm" + (s.sides && s.sides.length ? " · piece " + s.sides[0].piece + " / " + s.sides[1].piece : ""));
     row.addEventListener("click", () => select(i, true));
     seamList.append(row);
