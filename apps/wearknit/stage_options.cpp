@@ -83,6 +83,10 @@ void add_stitch_mesh_options(po::options_description& options, StitchMeshOptions
       "row-end-wales", po::value<double>(&p.tip_side_wales)->default_value(0.9),
       "a row that meets an oblique boundary in a point ends in a wale side this many wales "
       "long instead; 0 keeps the point")(
+      "knit-direction", po::value<std::string>(&stitch.knit_direction)->default_value("best"),
+      "which of the cut's two field directions the rows run along: as-cut (its course sides), "
+      "turned (its wale sides) or best (mesh both, keep the one with more sides of the stitch "
+      "size)")(
       "saddle-wales", po::value<double>(&p.saddle_wales)->default_value(5.0),
       "hold the row time's saddles where rows would go round them on a level, moving the rows "
       "within this many wales of each; 0 leaves them")(
@@ -106,6 +110,11 @@ std::string check_stitch_mesh_options(const po::variables_map& values, StitchMes
   if (problem.empty() && !(stitch.params.min_girth_stitches >= 0.0))
     problem = "--min-girth must not be negative";
   stitch.params.refuse_fine_features = stitch.fine_features == "refuse";
+  if (const auto direction = planner::parse_knit_direction(stitch.knit_direction)) {
+    stitch.params.direction = *direction;
+  } else if (problem.empty()) {
+    problem = "--knit-direction takes best, as-cut or turned, not '" + stitch.knit_direction + "'";
+  }
   const planner::StitchMeshParams& p = stitch.params.mesher;
   if (problem.empty() &&
       (p.straighten_iterations < 0 || !(p.label_weight >= 0) || !(p.pentagon_cost >= 0) ||

@@ -28,6 +28,7 @@ struct StitchMeshOptions {
   std::string swatch = "40x40:42x115";
   std::string stitch_mm;
   std::string fine_features = "knit";
+  std::string knit_direction = "best";
 };
 void add_stitch_mesh_options(boost::program_options::options_description& options,
                              StitchMeshOptions& stitch);

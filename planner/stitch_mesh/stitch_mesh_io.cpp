@@ -84,7 +84,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json lengths_json(const EdgeLengthStats& s, double target) {
+using nlohmann::json;
+
+// Which way the rows run, and with --knit-direction best how both ways
+// scored (stitch_mesh_score).
+json direction_json(const StitchMeshReport& report) {
+  json d = {{"rows_along", report.turned ? "the cut's wale sides" : "the cut's course sides"},
+            {"turned", report.turned}};
+  if (report.compared)
+    d["scores"] = {{"as_cut", report.score_as_cut}, {"turned", report.score_turned}};
+  return d;
+}
+
+json lengths_json(const EdgeLengthStats& s, double target) {
   return {{"count", s.count},   {"target_mm", target}, {"mean_mm", s.mean_mm},
           {"min_mm", s.min_mm}, {"max_mm", s.max_mm},  {"within_15_percent", s.within_15_percent}};
 }
@@ -135,6 +147,7 @@ nlohmann::json report_json(const StitchMeshReport& report) {
           {"sides_split_below", report.stats.sides_split_below},
           {"straighten_fits", report.stats.straighten_fits},
           {"label_deviation_deg", report.stats.label_deviation_deg},
+          {"knit_direction", direction_json(report)},
           {"row_time_levelled", report.stats.row_time_levelled},
           {"tip_sides", report.stats.tip_sides},
           {"relax_sweeps", report.stats.relax_sweeps},

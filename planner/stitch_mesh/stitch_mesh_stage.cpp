@@ -107,7 +107,8 @@ std::optional<StitchMeshOutcome> mesh_stitches(const Cut& cut, const StitchMeshS
   StitchMeshParams mesher = params.mesher;
   mesher.course_mm = params.gauge.course_mm;
   mesher.wale_mm = params.gauge.wale_mm;
-  StitchMeshResult result = make_stitch_mesh(disc, mesher);
+  DirectedStitchMesh directed = make_directed_stitch_mesh(disc, mesher, params.direction);
+  StitchMeshResult& result = directed.result;
   if (!result.problems.empty()) {
     // The cut mesh was read fine but could not be meshed into valid stitches.
     std::size_t shown = 0;
@@ -140,6 +141,10 @@ std::optional<StitchMeshOutcome> mesh_stitches(const Cut& cut, const StitchMeshS
   StitchMeshReport& report = outcome.report;
   report.gauge = params.gauge;
   report.fine = std::move(fine);
+  report.turned = directed.turned;
+  report.compared = directed.compared;
+  report.score_as_cut = directed.score_as_cut;
+  report.score_turned = directed.score_turned;
   // Stitches more than a wale off the cut mesh span a gap of it
   // (docs/stitch-mesh.md, "Fans").
   report.off_surface = off_surface_faces(result.mesh, disc, params.gauge.wale_mm);

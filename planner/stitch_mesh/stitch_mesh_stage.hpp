@@ -25,6 +25,8 @@ struct StitchMeshStageParams {
   // Stop with the list (P089) instead of knitting them at the gauge's
   // resolution with a warning (P088).
   bool refuse_fine_features = false;
+  // Which way the rows run (KnitDirection, stitch_mesher.hpp).
+  KnitDirection direction = KnitDirection::Best;
 };
 
 // The fine features of a cut at a stitch size: the parts of Q whose girth
@@ -51,6 +53,11 @@ struct StitchMeshReport {
   StitchMeshStats stats;
   StabilityCounts stability;
   OffSurface off_surface;
+  // The way the rows run: the cut's course sides (false) or its wale sides;
+  // with KnitDirection::Best, the scores of both ways.
+  bool turned = false;
+  bool compared = false;
+  double score_as_cut = 0, score_turned = 0;
   FineFeatures fine;
   double disc_area_mm2 = 0;
   double seconds = 0;  // the whole stage

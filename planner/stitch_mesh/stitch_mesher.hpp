@@ -32,6 +32,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -181,6 +182,43 @@ struct OffSurface {
   double tolerance_mm = 0;         // as given
 };
 OffSurface off_surface_faces(const StitchMesh& mesh, const LabelledDisc& disc, double tolerance_mm);
+
+// Which of the cut's two field directions is knitted as the course. §4.1
+// labels the seed quad's sides "using field directions" and says no more:
+// the cross field has four, and a disc whose course and wale sides are
+// swapped everywhere is labelled as consistently. Where the cuts run along
+// the rows of one way, the rows of the other end at them instead, and the
+// stitch mesh of one way can be much better than the other's
+// (docs/stitch-mesh.md, "Which way the rows run").
+enum class KnitDirection : std::uint8_t {
+  Best,    // mesh both ways and keep the better (stitch_mesh_score)
+  AsCut,   // the cut's course sides are the course
+  Turned,  // the cut's wale sides are the course
+};
+const char* to_string(KnitDirection direction);  // "best", "as-cut", "turned"
+std::optional<KnitDirection> parse_knit_direction(const std::string& text);
+
+// The disc with every side's direction turned a quarter (course <-> wale).
+LabelledDisc turned(const LabelledDisc& disc);
+
+// How well a stitch mesh keeps the stitch size: the share of its course
+// sides or of its wale sides within 15% of their targets, whichever is
+// lower, less the share of its stitches off the surface (off_surface_faces
+// at one wale); -infinity for a mesh with problems.
+double stitch_mesh_score(const StitchMeshResult& result, const LabelledDisc& disc, double wale_mm);
+
+struct DirectedStitchMesh {
+  StitchMeshResult result;
+  bool turned = false;                        // made from turned(disc)
+  bool compared = false;                      // both ways were made (KnitDirection::Best)
+  double score_as_cut = 0, score_turned = 0;  // when compared
+};
+
+// make_stitch_mesh of the disc as cut, turned, or both and the better (the
+// cut's way on a tie).
+DirectedStitchMesh make_directed_stitch_mesh(const LabelledDisc& disc,
+                                             const StitchMeshParams& params,
+                                             KnitDirection direction);
 
 // Area and boundary length of the disc (for the expected stitch count).
 double disc_area_mm2(const LabelledDisc& disc);

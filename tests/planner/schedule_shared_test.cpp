@@ -70,7 +70,8 @@ void stitch_shared(const fs::path& shared, const std::string& name,
   ASSERT_TRUE(cut) << name;
   const LabelledDisc disc = labelled_disc(cut->mesh);
   ASSERT_TRUE(check_disc(disc).empty()) << name << ": the cut is not a disc";
-  const StitchMeshResult stitched = make_stitch_mesh(disc, StitchMeshParams{});
+  const StitchMeshResult stitched =
+      make_directed_stitch_mesh(disc, StitchMeshParams{}, KnitDirection::Best).result;
   if (!stitched.problems.empty()) {
     FAIL() << name << ": the stitch-mesh stage reports " << stitched.problems.size()
            << " problem(s), first: " << stitched.problems.front();

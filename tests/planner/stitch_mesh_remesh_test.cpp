@@ -475,3 +475,44 @@ TEST(StitchMeshRemeshTest, StraighteningStopsAtOnceOnStraightLabels) {
 
 }  // namespace
 }  // namespace planner
+
+namespace planner {
+namespace {
+
+// Which way the rows run (KnitDirection): a quarter turn of every side's
+// direction keeps the disc valid and four of them give it back; `best`
+// meshes both ways and keeps the higher score, the very mesh that asking
+// for that way gives.
+TEST(StitchMeshDirectionTest, BestKeepsTheWayWithTheHigherScore) {
+  const LabelledDisc disc = stitch_discs::cone(30, 15, 40);
+  const LabelledDisc once = turned(disc);
+  EXPECT_TRUE(check_disc(once).empty());
+  EXPECT_NE(once.directions, disc.directions);
+  EXPECT_EQ(turned(turned(turned(once))).directions, disc.directions);
+
+  StitchMeshParams params;
+  const DirectedStitchMesh best = make_directed_stitch_mesh(disc, params, KnitDirection::Best);
+  ASSERT_TRUE(best.compared);
+  ASSERT_TRUE(best.result.problems.empty());
+  const DirectedStitchMesh as_cut = make_directed_stitch_mesh(disc, params, KnitDirection::AsCut);
+  const DirectedStitchMesh other = make_directed_stitch_mesh(disc, params, KnitDirection::Turned);
+  EXPECT_FALSE(as_cut.turned);
+  EXPECT_TRUE(other.turned);
+  EXPECT_DOUBLE_EQ(best.score_as_cut, stitch_mesh_score(as_cut.result, disc, params.wale_mm));
+  EXPECT_DOUBLE_EQ(best.score_turned, stitch_mesh_score(other.result, once, params.wale_mm));
+  EXPECT_EQ(best.turned, best.score_turned > best.score_as_cut);
+  const StitchMesh& kept = best.turned ? other.result.mesh : as_cut.result.mesh;
+  EXPECT_EQ(best.result.mesh.faces.size(), kept.faces.size());
+  EXPECT_EQ(best.result.mesh.positions, kept.positions);
+  // The rows of the cone go round it as cut and along it turned: the
+  // turned rows end at the cut, and each way is a valid stitch mesh.
+  EXPECT_TRUE(check(other.result.mesh).empty());
+  EXPECT_NE(as_cut.result.stats.rows, other.result.stats.rows);
+  // A mesh that could not be made scores below any that could.
+  StitchMeshResult failed;
+  failed.problems.push_back("x");
+  EXPECT_LT(stitch_mesh_score(failed, disc, params.wale_mm), best.score_as_cut);
+}
+
+}  // namespace
+}  // namespace planner

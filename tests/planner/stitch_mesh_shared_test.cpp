@@ -96,11 +96,18 @@ class SharedDiscTest : public ::testing::TestWithParam<std::string> {
 
 class StitchMeshSharedTest : public SharedDiscTest {};
 
-// With the default options (rules of thumb on).
+// With the default options (rules of thumb on; the rows along the better of
+// the cut's two directions, as the stage makes them).
 TEST_P(StitchMeshSharedTest, IsAValidDiscOfTheStitchSizes) {
   Meshed m;
-  m.disc = disc();
-  m.result = make_stitch_mesh(m.disc, StitchMeshParams{});
+  DirectedStitchMesh directed =
+      make_directed_stitch_mesh(disc(), StitchMeshParams{}, KnitDirection::Best);
+  m.disc = directed.turned ? turned(disc()) : disc();
+  m.result = std::move(directed.result);
+  std::cout << "rows along the cut's " << (directed.turned ? "wale" : "course") << " sides; scores "
+            << directed.score_as_cut << " as cut, " << directed.score_turned << " turned\n";
+  EXPECT_GE(directed.turned ? directed.score_turned : directed.score_as_cut,
+            std::max(directed.score_as_cut, directed.score_turned));
   expect_valid(m);
   expect_sizes(m, Limits{});
 }
