@@ -152,7 +152,7 @@ class ClothSimulation {
   const PolygonMesh& mesh() const { return mesh_; }
   std::uint64_t projections() const { return projections_; }
 
- private:
+ public:
   // The springs of one pass, as the step reads them: colour classes one
   // after the other, each sorted by vertex (memory order).
   struct SpringArrays {
@@ -161,6 +161,7 @@ class ClothSimulation {
     std::vector<double> half_stiffness;  // 0.5 × the per-iteration stiffness
     std::vector<int> colour_begin;       // class c is [colour_begin[c], colour_begin[c+1])
   };
+ private:
   // Which part of each loop the calling thread takes (one thread: all).
   struct Share {
     int index = 0, count = 1;
