@@ -161,6 +161,7 @@ class ClothSimulation {
     std::vector<double> half_stiffness;  // 0.5 × the per-iteration stiffness
     std::vector<int> colour_begin;       // class c is [colour_begin[c], colour_begin[c+1])
   };
+
  private:
   // Which part of each loop the calling thread takes (one thread: all).
   struct Share {
