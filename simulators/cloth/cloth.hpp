@@ -152,16 +152,29 @@ class ClothSimulation {
   const PolygonMesh& mesh() const { return mesh_; }
   std::uint64_t projections() const { return projections_; }
 
+ public:
+  // The springs of one pass, as the step reads them: colour classes one
+  // after the other, each sorted by vertex (memory order).
+  struct SpringArrays {
+    std::vector<int> a, b;
+    std::vector<double> rest_length;
+    std::vector<double> half_stiffness;  // 0.5 × the per-iteration stiffness
+    std::vector<int> colour_begin;       // class c is [colour_begin[c], colour_begin[c+1])
+  };
+
  private:
+  // Which part of each loop the calling thread takes (one thread: all).
+  struct Share {
+    int index = 0, count = 1;
+  };
+
   PolygonMesh mesh_;
   const SignedDistanceField& wearer_;
   ClothParams params_;
   double scale_ = 1.0;
-  std::vector<Spring> springs_;    // sorted by colour
-  std::vector<int> colour_begin_;  // springs_[colour_begin_[c], colour_begin_[c+1])
-  std::vector<int> edge_springs_;  // indices of stretch springs, sorted by edge colour
-  std::vector<int> edge_colour_begin_;
-  std::array<double, 3> stiffness_{};
+  std::vector<Spring> springs_;  // sorted by colour
+  SpringArrays pass_;            // springs_, for the constraint iterations
+  SpringArrays edges_;           // the stretch springs, for the edge collision
   std::vector<Vec3> x_, v_, p_;
   std::vector<Vec3> contact_normal_;    // per vertex, this step's contact plane:
   std::vector<double> contact_offset_;  // distance(p) ≈ offset + normal·p
@@ -174,8 +187,12 @@ class ClothSimulation {
   std::uint64_t projections_ = 0;
   mutable std::size_t nearest_hint_ = 0;  // all_farther_than's first vertex to look at
   double plane_distance(int i) const { return contact_offset_[i] + contact_normal_[i].dot(p_[i]); }
-  void collide_vertices();
-  void collide_edges();
+  // springs[chosen[i]] for every i, class by class as `colour_begin` splits
+  // `chosen`, with the kinds' per-iteration `stiffness`.
+  static SpringArrays arrange(const std::vector<Spring>& springs, std::vector<int> chosen,
+                              const std::vector<int>& colour_begin,
+                              const std::array<double, 3>& stiffness);
+  void step_share(int global_axis, Share share);
 };
 
 // Pushes every vertex of `mesh` out of the wearer until it is `clearance`

@@ -18,15 +18,14 @@ inline int resolve_threads(int threads) {
   return threads > 0 ? threads : omp_get_max_threads();
 }
 
-// Many short iterations (a cloth step's loops over particles and springs),
-// split evenly between the threads.
+// Many short iterations (the rows of a distance field, the vertices of a
+// mesh), split evenly between the threads. (A cloth step runs its loops in
+// one parallel region of its own, ClothSimulation::step.)
 template <class Function>
 void parallel_for(int n, int threads, Function&& function) {
   const int count = resolve_threads(threads);
   if (count <= 1 || n <= 64) {
-    // A plain loop: even an inactive OpenMP region costs a runtime call per
-    // loop, and a cloth step runs over a hundred loops (one per colour class
-    // and iteration). The wearability test runs its trials single-threaded.
+    // A plain loop: even an inactive OpenMP region costs a runtime call.
     for (int i = 0; i < n; ++i) function(i);
     return;
   }

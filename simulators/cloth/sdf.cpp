@@ -324,51 +324,18 @@ Vec3 SignedDistanceField::box_max() const {
   return high_;
 }
 
-double SignedDistanceField::inside_value_and_gradient(const Vec3& p, Vec3* gradient) const {
-  const Vec3 g = (p - origin_) / cell_;
-  const int i = std::clamp(static_cast<int>(std::floor(g.x())), 0, nx_ - 2);
-  const int j = std::clamp(static_cast<int>(std::floor(g.y())), 0, ny_ - 2);
-  const int k = std::clamp(static_cast<int>(std::floor(g.z())), 0, nz_ - 2);
-  const double u = std::clamp(g.x() - i, 0.0, 1.0);
-  const double v = std::clamp(g.y() - j, 0.0, 1.0);
-  const double w = std::clamp(g.z() - k, 0.0, 1.0);
-  const double c000 = node(i, j, k), c100 = node(i + 1, j, k);
-  const double c010 = node(i, j + 1, k), c110 = node(i + 1, j + 1, k);
-  const double c001 = node(i, j, k + 1), c101 = node(i + 1, j, k + 1);
-  const double c011 = node(i, j + 1, k + 1), c111 = node(i + 1, j + 1, k + 1);
-  const double x00 = c000 + (c100 - c000) * u, x10 = c010 + (c110 - c010) * u;
-  const double x01 = c001 + (c101 - c001) * u, x11 = c011 + (c111 - c011) * u;
-  const double y0 = x00 + (x10 - x00) * v, y1 = x01 + (x11 - x01) * v;
-  if (gradient != nullptr) {
-    const double dx0 = (c100 - c000) + ((c110 - c010) - (c100 - c000)) * v;
-    const double dx1 = (c101 - c001) + ((c111 - c011) - (c101 - c001)) * v;
-    const double dy0 = x10 - x00, dy1 = x11 - x01;
-    Vec3 d(dx0 + (dx1 - dx0) * w, dy0 + (dy1 - dy0) * w, y1 - y0);
-    const double n = d.norm();
-    *gradient = n > 1e-300 ? Vec3(d / n) : Vec3::UnitX();
-  }
-  return y0 + (y1 - y0) * w;
-}
-
-double SignedDistanceField::value(const Vec3& p) const {
-  return evaluate(p, nullptr);
-}
-
-double SignedDistanceField::value_and_gradient(const Vec3& p, Vec3& gradient) const {
-  return evaluate(p, &gradient);
-}
-
-double SignedDistanceField::evaluate(const Vec3& p, Vec3* want) const {
+double SignedDistanceField::beyond_grid(const Vec3& p, Vec3* want) const {
   const Vec3& high = high_;
   const Vec3 clamped = p.cwiseMax(origin_).cwiseMin(high);
   const Vec3 outside = p - clamped;
-  // Almost every query is inside the grid: no square root for those.
-  if (outside.squaredNorm() == 0) return inside_value_and_gradient(p, want);
+  // A point on the box's faces, or beyond them by less than the square
+  // root of the least double, is inside.
+  if (outside.squaredNorm() == 0) return interpolate(p, want);
   const double gap = outside.norm();
-  if (gap == 0) return inside_value_and_gradient(p, want);
+  if (gap == 0) return interpolate(p, want);
   // Beyond the grid: the box is far from the surface (margin), so the field
   // grows like the distance to the box; the gradient points away from it.
-  const double at_box = inside_value_and_gradient(clamped, nullptr);
+  const double at_box = interpolate(clamped, nullptr);
   if (want != nullptr) *want = outside / gap;
   return at_box + gap;
 }

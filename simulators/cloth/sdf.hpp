@@ -16,6 +16,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -83,11 +84,15 @@ class SignedDistanceField {
                       const SdfParams& params = {});
 
   // Interpolated signed distance at `p`.
-  double value(const Vec3& p) const;
+  double value(const Vec3& p) const {
+    return in_grid(p) ? interpolate(p, nullptr) : beyond_grid(p, nullptr);
+  }
   // Interpolated signed distance at `p`; `gradient` receives the unit
   // direction of increasing distance (the interpolant's gradient,
   // normalised; +x when it vanishes).
-  double value_and_gradient(const Vec3& p, Vec3& gradient) const;
+  double value_and_gradient(const Vec3& p, Vec3& gradient) const {
+    return in_grid(p) ? interpolate(p, &gradient) : beyond_grid(p, &gradient);
+  }
 
   // The exact mesh queries the grid was built from.
   const TriangleMeshQuery& mesh() const { return *mesh_; }
@@ -107,11 +112,46 @@ class SignedDistanceField {
   int nx_ = 0, ny_ = 0, nz_ = 0;
   double scale_ = 1.0;
   std::vector<float> values_;
-  double node(int i, int j, int k) const {
-    return values_[(static_cast<std::size_t>(k) * ny_ + j) * nx_ + i];
+  // The queries are inline: the cloth step makes thousands of them, almost
+  // all inside the grid.
+  bool in_grid(const Vec3& p) const {
+    return p.x() >= origin_.x() && p.y() >= origin_.y() && p.z() >= origin_.z() &&
+           p.x() <= high_.x() && p.y() <= high_.y() && p.z() <= high_.z();
   }
-  double inside_value_and_gradient(const Vec3& p, Vec3* gradient) const;
-  double evaluate(const Vec3& p, Vec3* gradient) const;
+  double interpolate(const Vec3& p, Vec3* gradient) const;
+  double beyond_grid(const Vec3& p, Vec3* gradient) const;
 };
+
+// The trilinear interpolant at `p` (clamped into the grid's cells) and,
+// when `gradient` is given, its normalised gradient.
+inline double SignedDistanceField::interpolate(const Vec3& p, Vec3* gradient) const {
+  const Vec3 g = (p - origin_) / cell_;
+  // Truncation is the floor for g >= 0; a negative g clamps to cell 0
+  // either way.
+  const int i = std::clamp(static_cast<int>(g.x()), 0, nx_ - 2);
+  const int j = std::clamp(static_cast<int>(g.y()), 0, ny_ - 2);
+  const int k = std::clamp(static_cast<int>(g.z()), 0, nz_ - 2);
+  const double u = std::clamp(g.x() - i, 0.0, 1.0);
+  const double v = std::clamp(g.y() - j, 0.0, 1.0);
+  const double w = std::clamp(g.z() - k, 0.0, 1.0);
+  const float* c = values_.data() + (static_cast<std::size_t>(k) * ny_ + j) * nx_ + i;
+  const std::size_t dy = nx_, dz = static_cast<std::size_t>(nx_) * ny_;
+  const double c000 = c[0], c100 = c[1];
+  const double c010 = c[dy], c110 = c[dy + 1];
+  const double c001 = c[dz], c101 = c[dz + 1];
+  const double c011 = c[dz + dy], c111 = c[dz + dy + 1];
+  const double x00 = c000 + (c100 - c000) * u, x10 = c010 + (c110 - c010) * u;
+  const double x01 = c001 + (c101 - c001) * u, x11 = c011 + (c111 - c011) * u;
+  const double y0 = x00 + (x10 - x00) * v, y1 = x01 + (x11 - x01) * v;
+  if (gradient != nullptr) {
+    const double dx0 = (c100 - c000) + ((c110 - c010) - (c100 - c000)) * v;
+    const double dx1 = (c101 - c001) + ((c111 - c011) - (c101 - c001)) * v;
+    const double dy0 = x10 - x00, dy1 = x11 - x01;
+    const Vec3 d(dx0 + (dx1 - dx0) * w, dy0 + (dy1 - dy0) * w, y1 - y0);
+    const double n = d.norm();
+    *gradient = n > 1e-300 ? Vec3(d / n) : Vec3::UnitX();
+  }
+  return y0 + (y1 - y0) * w;
+}
 
 }  // namespace cloth

@@ -191,9 +191,14 @@ TEST(ClothTest, SameSeedSameTrajectoryForAnyThreadCount) {
   params.threads = 2;
   cloth::ClothSimulation two(garment, field, params);
   two.run(11);
+  params.threads = 3;  // parts of unequal size
+  cloth::ClothSimulation three(garment, field, params);
+  three.run(11);
   ASSERT_EQ(one.positions().size(), two.positions().size());
+  ASSERT_EQ(one.positions().size(), three.positions().size());
   for (std::size_t i = 0; i < one.positions().size(); ++i) {
     EXPECT_EQ(one.positions()[i], two.positions()[i]) << i;
+    EXPECT_EQ(one.positions()[i], three.positions()[i]) << i;
   }
   cloth::ClothSimulation other(garment, field, params);
   other.run(12);
