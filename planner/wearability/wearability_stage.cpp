@@ -12,6 +12,7 @@
 
 #include "knitout/output_file.hpp"
 #include "planner/common/hash.hpp"
+#include "planner/common/index.hpp"
 #include "planner/common/json_file.hpp"
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
@@ -188,23 +189,23 @@ std::uint64_t recut_seed(std::uint64_t wearability_seed, int attempt) {
 }
 
 CoverMesh cover_of(const Cut& cut, int min_vertices) {
-  // The arcs as cuts.json lists them (vertex pairs of proxy.obj, which are
-  // the first vertices of the disc), read as a hand-made cuts.json is.
-  nlohmann::json arcs = nlohmann::json::array();
-  for (std::size_t a = 0; a < cut.mesh.arcs.size(); ++a) {
-    nlohmann::json edges = nlohmann::json::array();
-    const std::vector<int>& path = cut.mesh.arcs[a].vertices;
-    for (std::size_t k = 0; k + 1 < path.size(); ++k) edges.push_back({path[k], path[k + 1]});
-    arcs.push_back({{"id", a}, {"edges", edges}});
+  // The disc welded along its cuts: every disc vertex is the copy of one
+  // proxy vertex (disc_source), so the garment is the proxy's vertices with
+  // the disc's faces. Welding by position instead would merge proxy
+  // vertices that lie closer than the files' precision.
+  CoverMesh cover;
+  const PolygonMesh proxy = cut.mesh.proxy.polygons();
+  cover.positions = proxy.positions;
+  for (const std::vector<int>& face : cut.mesh.disc.faces) {
+    std::vector<int> welded;
+    for (const int v : face) welded.push_back(cut.mesh.disc_source[at(v)]);
+    cover.faces.push_back(std::move(welded));
   }
-  knitout::DiagnosticSink sink;
-  auto cover = read_cover_mesh(cut.mesh.disc, {{"arcs", arcs}}, "cut.json", sink);
-  if (!cover) {
-    throw std::logic_error("the cut's own arcs do not make a garment: " +
-                           (sink.diagnostics().empty() ? std::string("no reason given")
-                                                       : knitout::format(sink.diagnostics()[0])));
-  }
-  return refined_for_cloth(std::move(*cover), min_vertices);
+  for (std::size_t a = 0; a < cut.mesh.arcs.size(); ++a)
+    cover.arcs.push_back(arc_from_path(cut.mesh.arcs[a].vertices, std::to_string(a)));
+  if (const auto problems = validate(cover); !problems.empty())
+    throw std::logic_error("the cut's own arcs do not make a garment: " + problems.front());
+  return refined_for_cloth(std::move(cover), min_vertices);
 }
 
 cloth::SignedDistanceField wearer_field(const PolygonMesh& wearer,

@@ -332,3 +332,36 @@ TEST(WearabilityVerbTest, BadFolderGivesDiagnostics) {
 
 }  // namespace
 }  // namespace wearknit::test
+
+namespace wearknit::test {
+namespace {
+
+// The garment of a cut is the proxy's vertices with the disc's faces, joined
+// by which proxy vertex each disc vertex copies, not by position: the
+// field-guided proxy of sphere-qd at 100 mm has two vertices 1.8 µm apart,
+// which cut-mesh.obj's precision writes at one point, and welding them made
+// an edge of three faces (an internal error of the wearability stage).
+TEST(WearabilityVerbTest, TheGarmentOfACutKeepsProxyVerticesCloserThanTheFilesPrecision) {
+  WEARKNIT_REQUIRE_SHARED(shared);
+  const fs::path mesh = shared / "meshes" / "sphere-qd.obj";
+  knitout::DiagnosticSink sink;
+  const auto sphere = planner::read_stage_mesh(mesh.string(), sink);
+  ASSERT_TRUE(sphere);
+  Eigen::AlignedBox3d box;
+  for (const auto& p : sphere->positions) box.extend(p);
+  const double scale = 100.0 / box.sizes().maxCoeff();
+  const TempDir folder("cover-of-field");
+  const auto cut = run_wearknit("cut '" + mesh.string() + "' --scale " + std::to_string(scale) +
+                                " --proxy field --growth square --no-pictures -q -o '" +
+                                folder.path().string() + "'");
+  ASSERT_EQ(cut.exit_code, 0) << cut.err;
+  const auto read = planner::read_cut(folder.path().string(), sink);
+  ASSERT_TRUE(read);
+  const planner::CoverMesh cover = planner::cover_of(*read, 0);
+  EXPECT_EQ(cover.positions.size(), read->mesh.proxy.polygons().positions.size());
+  EXPECT_TRUE(planner::validate(cover).empty());
+  EXPECT_EQ(cover.arcs.size(), read->mesh.arcs.size());
+}
+
+}  // namespace
+}  // namespace wearknit::test
