@@ -56,6 +56,11 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
   EXPECT_GT(s.at("relax_sweeps").get<int>(), 0);
   EXPECT_LE(s.at("relax_sweeps").get<int>(), 150);
   EXPECT_GE(s.at("relax_seconds").get<double>(), 0.0);
+  // Both ways were meshed (--knit-direction best) and the better kept.
+  const auto& way = s.at("knit_direction");
+  const double as_cut = way.at("scores").at("as_cut").get<double>();
+  const double turned = way.at("scores").at("turned").get<double>();
+  EXPECT_EQ(way.at("turned").get<bool>(), turned > as_cut);
 
   // --relax 0 keeps the zipped places: the same stitches, other vertex places.
   const auto zipped = run_wearknit("stitch-mesh '" + dir.string() + "' --relax 0 -q --no-picture");
@@ -115,6 +120,11 @@ TEST(StitchMeshCliTest, RejectsBadGaugeOptions) {
               "must not be negative\n")
         << option;
   }
+  r = run_wearknit("stitch-mesh '" + dir.string() + "' --knit-direction sideways");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "wearknit stitch-mesh: --knit-direction takes best, as-cut or turned, not "
+            "'sideways'\n");
 }
 
 TEST(StitchMeshCliTest, SaysWhatIsMissingAndWritesNothing) {
