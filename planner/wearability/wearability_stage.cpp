@@ -44,12 +44,12 @@ std::string seed_text(const std::optional<std::uint64_t>& seed) {
   return seed ? "seed " + std::to_string(*seed) : std::string("an unrecorded seed");
 }
 
-// The sewn arcs to open after a failed round of the final check: those
-// passing within the caught region of a failed trial (its caught vertices'
-// radius plus the success distance), and at least `least` of them, nearest
-// first.
+// The sewn arcs to open after a failed round of the final check: the
+// `count` nearest to where its failed trials stay caught (the distance of
+// an arc is that of its nearest vertex to the edge of a caught region:
+// the caught vertices' centroid and radius).
 std::vector<int> arcs_to_open(const CoverMesh& cover, const EliminationResult& run,
-                              const TestResult& test, double margin, int least) {
+                              const TestResult& test, int count) {
   std::vector<std::pair<double, int>> by_distance;
   for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
     if (run.arcs[a].label != Label::Sew) continue;
@@ -60,7 +60,7 @@ std::vector<int> arcs_to_open(const CoverMesh& cover, const EliminationResult& r
         for (const int v : edge) {
           const double d = (cover.positions[static_cast<std::size_t>(v)] - trial.caught_at).norm() -
                            trial.caught_radius;
-          nearest = std::min(nearest, d);
+          nearest = std::min(nearest, std::max(d, 0.0));
         }
       }
     }
@@ -68,9 +68,9 @@ std::vector<int> arcs_to_open(const CoverMesh& cover, const EliminationResult& r
   }
   std::sort(by_distance.begin(), by_distance.end());
   std::vector<int> chosen;
-  for (const auto& [distance, arc] : by_distance) {
-    if (static_cast<int>(chosen.size()) >= least && !(distance <= margin)) break;
-    chosen.push_back(arc);
+  for (const auto& entry : by_distance) {
+    if (static_cast<int>(chosen.size()) >= count) break;
+    chosen.push_back(entry.second);
   }
   std::sort(chosen.begin(), chosen.end());
   return chosen;
@@ -91,7 +91,6 @@ void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) 
       dressed(refined_for_cloth(subdivided(result.cover), result.params.cloth_vertices), wearer,
               result.params.test.cloth);
   check.cloth_vertices = static_cast<int>(garment.positions.size());
-  const double margin = result.params.test.cloth.success_distance * wearer.scale();
   for (int round = 0;; ++round) {
     CheckRound r;
     // "CHECK" tags the stream, apart from the elimination's seeds.
@@ -101,9 +100,9 @@ void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) 
         test_every_trial(garment, run.open(), wearer, result.params.test, r.seed, check.trials);
     const bool passed = r.test.wearable;
     if (!passed) {
-      // Twice as many arcs each round at least, so the rounds stay few.
-      const int least = round < 20 ? 1 << round : std::numeric_limits<int>::max();
-      r.reopened = arcs_to_open(result.cover, run, r.test, margin, least);
+      // One arc, then twice as many each round: few arcs laced, few rounds.
+      const int count = round < 20 ? 1 << round : std::numeric_limits<int>::max();
+      r.reopened = arcs_to_open(result.cover, run, r.test, count);
       for (const int a : r.reopened) {
         run.arcs[static_cast<std::size_t>(a)].label = Label::Lace;
         run.arcs[static_cast<std::size_t>(a)].reopened = true;

@@ -41,8 +41,9 @@ struct WearabilityStageParams {
 // (planner::subdivided), and further subdivided until it has at least
 // cloth_vertices vertices, so that neither a lucky trial nor a resolution
 // too coarse to hold the garment decides the labels. When a trial fails,
-// the sewn arcs nearest where it stays caught are opened (laced) and the
-// check runs again with new seeds, until it passes or no sewn arc is left.
+// the sewn arcs nearest where it stays caught are opened (laced), one in
+// the first round and twice as many in each round after, and the check
+// runs again with new seeds, until it passes or no sewn arc is left.
 struct CheckRound {
   std::uint64_t seed = 0;
   TestResult test;            // test_every_trial: its trials up to the first failure
