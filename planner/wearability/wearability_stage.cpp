@@ -76,6 +76,13 @@ std::vector<int> arcs_to_open(const CoverMesh& cover, const EliminationResult& r
   return chosen;
 }
 
+// The final check's garment: one subdivision step finer than the
+// elimination's, then subdivided until it has cloth_vertices, dressed.
+CoverMesh check_garment(const Wearability& result, const cloth::SignedDistanceField& wearer) {
+  return dressed(refined_for_cloth(subdivided(result.cover), result.params.cloth_vertices), wearer,
+                 result.params.test.cloth);
+}
+
 // The final check (FinalCheck): rounds of M trials on the chosen run's
 // configuration, opening arcs after each failed round.
 void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) {
@@ -87,9 +94,7 @@ void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) 
   EliminationResult& run = result.study.runs[static_cast<std::size_t>(chosen)];
   check.ran = true;
   check.trials = result.params.check_trials;
-  const CoverMesh garment =
-      dressed(refined_for_cloth(subdivided(result.cover), result.params.cloth_vertices), wearer,
-              result.params.test.cloth);
+  const CoverMesh garment = check_garment(result, wearer);
   check.cloth_vertices = static_cast<int>(garment.positions.size());
   for (int round = 0;; ++round) {
     CheckRound r;
@@ -406,7 +411,16 @@ std::string write_strip_off_frames(const Wearability& result,
   fs::create_directories(dir, error);
   if (error) return dir + ": cannot create folder: " + error.message();
   const EliminationResult& run = result.study.runs[static_cast<std::size_t>(chosen)];
-  const CoverMesh dressed_mesh = dressed(result.cover, wearer, result.params.test.cloth);
+  // The final configuration came off in a trial the frames repeat: the last
+  // sewn arc's test, unless the final check laced arcs after it; then the
+  // first trial of the check's passing round, on the check's garment.
+  const FinalCheck& check = result.check;
+  const bool from_check = check.passed && check.reopened() > 0;
+  const CoverMesh dressed_mesh = from_check
+                                     ? check_garment(result, wearer)
+                                     : dressed(result.cover, wearer, result.params.test.cloth);
+  const std::uint64_t seed =
+      from_check ? check.rounds.back().test.trials.front().seed : final_seed(run);
   const PolygonMesh garment = open_cuts(dressed_mesh, run.open());
   // One thread: a garment of a few thousand vertices gains little from
   // splitting a step, and loses much when the cores are busy.
@@ -423,7 +437,7 @@ std::string write_strip_off_frames(const Wearability& result,
     return failure.empty();
   };
   write_frame(0, sim);
-  const auto outcome = sim.run(final_seed(run), [&](int step, const cloth::ClothSimulation& s) {
+  const auto outcome = sim.run(seed, [&](int step, const cloth::ClothSimulation& s) {
     return step % every != 0 || write_frame(step, s);
   });
   *off = outcome.success;

@@ -510,6 +510,21 @@ TEST(WearabilityStageTest, TheFinalCheckCatchesALabellingTheEliminationWasFooled
       static_cast<int>(planner::refined_for_cloth(planner::subdivided(bag), params.cloth_vertices)
                            .positions.size()));
   EXPECT_GE(checked.check.cloth_vertices, params.cloth_vertices);
+  // The frames repeat the check's passing trial on the check's garment,
+  // which comes off (the elimination's coarse bag has a dozen vertices).
+  const TempDir frames("fooled-frames");
+  int written = 0;
+  bool off = false;
+  ASSERT_EQ(
+      planner::write_strip_off_frames(checked, plate, frames.path().string(), 1000, &written, &off),
+      "");
+  EXPECT_TRUE(off);
+  EXPECT_GE(written, 1);
+  const std::string first = read_file(frames.path() / "frame-00000.obj");
+  std::size_t vertices = 0;
+  for (std::size_t at = first.find("v "); at != std::string::npos; at = first.find("\nv ", at + 1))
+    ++vertices;
+  EXPECT_GE(vertices, static_cast<std::size_t>(checked.check.cloth_vertices));
 }
 
 // W021: the final check did not pass with every arc laced; it says how
