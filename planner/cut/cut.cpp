@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <deque>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -12,6 +13,7 @@
 
 #include "planner/common/index.hpp"
 #include "planner/common/union_find.hpp"
+#include "planner/cut/tighten.hpp"
 #include "planner/cut/vanishing.hpp"
 #include "planner/mesh/soup.hpp"
 
@@ -140,19 +142,30 @@ int out_along(const HalfedgeMesh& q, int w, int e) {
   return q.from(h) == w ? h : q.twin(h);
 }
 
-// The vertex reached from w by following the cut two edges along edge e
-// (one where the next vertex is a node or the cut does not go on through it).
-int two_edges_along(const HalfedgeMesh& q, const std::vector<std::vector<int>>& incident, int w,
-                    int e) {
-  const int v = q.to(out_along(q, w, e));
-  const auto& list = incident[at(v)];
-  if (list.size() != 2) return v;
-  const int next = list[0] == e ? list[1] : list[0];
-  return q.to(out_along(q, v, next));
+// The vertex reached from w by following the cut `reach` edges along edge e
+// (fewer where the next vertex is a node or the cut does not go on through it).
+int edges_along(const HalfedgeMesh& q, const std::vector<std::vector<int>>& incident, int w, int e,
+                int reach) {
+  int v = q.to(out_along(q, w, e));
+  for (int k = 1; k < reach; ++k) {
+    const auto& list = incident[at(v)];
+    if (list.size() != 2) break;
+    e = list[0] == e ? list[1] : list[0];
+    v = q.to(out_along(q, v, e));
+  }
+  return v;
 }
 
-// Cut-arcs: maximal paths of cut edges through regular interior vertices
-// where exactly two cut edges meet and the cut turns by at most `turn_deg`.
+bool is_singular(const FieldLabels& labels, int v) {
+  return labels.corner_count[at(v)] % 4 != 0;
+}
+
+// Cut-arcs: maximal paths of cut edges through interior vertices that are not
+// singular, where exactly two cut edges meet and the cut turns by at most
+// `turn_deg`. The turn is measured between the chords two edges back and two
+// ahead, or one on a path between other nodes of under 8 edges, so that a
+// small loop (a thin handle's cut) is one arc rather than split at every
+// vertex.
 std::vector<CutArc> find_arcs(const HalfedgeMesh& q, const FieldLabels& labels,
                               const std::vector<bool>& cut_edge, double turn_deg) {
   std::vector<std::vector<int>> incident(at(q.num_vertices()));
@@ -162,15 +175,43 @@ std::vector<CutArc> find_arcs(const HalfedgeMesh& q, const FieldLabels& labels,
     incident[at(q.from(h))].push_back(e);
     incident[at(q.to(h))].push_back(e);
   }
+  auto structural = [&](int w) {
+    return incident[at(w)].size() != 2 || q.is_boundary_vertex(w) || is_singular(labels, w);
+  };
+  // Per cut edge: the number of edges of the path between structural nodes it lies on.
+  std::vector<int> path_edges(at(q.num_edges()), 0);
+  {
+    std::vector<bool> seen(at(q.num_edges()), false);
+    auto walk = [&](int start, int first) {
+      std::vector<int> edges;
+      int w = start;
+      int e = first;
+      while (!seen[at(e)]) {
+        seen[at(e)] = true;
+        edges.push_back(e);
+        w = q.to(out_along(q, w, e));
+        if (w == start || structural(w)) break;
+        const auto& list = incident[at(w)];
+        e = list[0] == e ? list[1] : list[0];
+      }
+      for (int edge : edges) path_edges[at(edge)] = static_cast<int>(edges.size());
+    };
+    for (int v = 0; v < q.num_vertices(); ++v) {
+      if (incident[at(v)].empty() || !structural(v)) continue;
+      for (int e : incident[at(v)]) walk(v, e);
+    }
+    for (int e = 0; e < q.num_edges(); ++e) {
+      if (cut_edge[at(e)] && !seen[at(e)]) walk(q.from(q.edge_halfedge(e)), e);
+    }
+  }
   const double max_turn = turn_deg * std::numbers::pi / 180.0;
   auto passes_through = [&](int w) {
+    if (structural(w)) return false;
     const auto& list = incident[at(w)];
-    if (list.size() != 2 || q.is_boundary_vertex(w) || labels.corner_count[at(w)] != 4) {
-      return false;
-    }
+    const int reach = path_edges[at(list[0])] < 8 ? 1 : 2;
     const Vec3& p = q.position(w);
-    const Vec3 back = p - q.position(two_edges_along(q, incident, w, list[0]));
-    const Vec3 ahead = q.position(two_edges_along(q, incident, w, list[1])) - p;
+    const Vec3 back = p - q.position(edges_along(q, incident, w, list[0], reach));
+    const Vec3 ahead = q.position(edges_along(q, incident, w, list[1], reach)) - p;
     return angle_between(back, ahead) <= max_turn;
   };
   std::vector<bool> node(at(q.num_vertices()), false);
@@ -568,6 +609,46 @@ class PatchGrower {
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
 };
 
+// The disc's frames and (u, v) cells again, after the cut moved: faces are
+// reached from the seed across uncut edges, each with the frame that makes
+// its side opposite to the one it was reached over (as in patch growing).
+void lay_out(CutMesh& cut) {
+  const HalfedgeMesh& q = cut.proxy;
+  const int seed = cut.seed_face;
+  const int seed_frame = cut.face_frame[at(seed)];
+  std::vector<bool> reached(at(q.num_faces()), false);
+  auto place = [&](int f, int frame, std::array<int, 2> uv) {
+    reached[at(f)] = true;
+    cut.face_frame[at(f)] = frame;
+    for (int i = 0; i < q.degree(f); ++i) {
+      const int h = q.face_start(f) + i;
+      cut.direction[at(h)] = halfedge_direction(q, cut.labels, frame, h);
+    }
+    cut.face_uv[at(f)] = uv;
+  };
+  place(seed, seed_frame, {0, 0});
+  std::deque<int> queue{seed};
+  while (!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    for (int i = 0; i < q.degree(f); ++i) {
+      const int h = q.face_start(f) + i;
+      const int t = q.twin(h);
+      if (t < 0 || cut.cut_edge[at(q.edge(h))] || reached[at(q.face(t))]) continue;
+      const int frame =
+          ((cut.direction[at(h)] + 2 - halfedge_direction(q, cut.labels, 0, t)) % 4 + 4) % 4;
+      const auto& step = kStep[at(cut.direction[at(h)])];
+      place(q.face(t), frame, {cut.face_uv[at(f)][0] + step[0], cut.face_uv[at(f)][1] + step[1]});
+      queue.push_back(q.face(t));
+    }
+  }
+  std::unordered_map<std::uint64_t, int> cells;
+  for (const auto& uv : cut.face_uv) ++cells[cell_key(uv)];
+  for (int f = 0; f < q.num_faces(); ++f) {
+    cut.overlap_count[at(f)] = cells[cell_key(cut.face_uv[at(f)])];
+  }
+}
+
 }  // namespace
 
 CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params,
@@ -601,6 +682,7 @@ CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params,
   }
   cut.overlap_count.assign(at(nf), 0);
   for (int f = 0; f < nf; ++f) cut.overlap_count[at(f)] = patch.faces_in_cell(cut.face_uv[at(f)]);
+  if (params.tighten && tighten_cut(q, cut.labels, cut.cut_edge) > 0) lay_out(cut);
   build_disc(cut);
   cut.arcs = find_arcs(q, cut.labels, cut.cut_edge, params.arc_turn_deg);
   return cut;

@@ -75,13 +75,17 @@ struct CutParams {
   // (max(|u|, |v|)) first, so the patch grows as a square; else in the
   // order of the random keys (§4.2).
   bool square_growth = false;
+  // Slide the grown cut across single faces while that shortens it
+  // (tighten.hpp); departs from §4.2, docs/cutting.md says why.
+  bool tighten = true;
 };
 
 // A cut-arc: a sequence of cut edges of Q (§3, §4) between nodes of the cut
 // graph, as the path of Q's vertices it runs along (edges are consecutive
-// pairs). A node is an irregular vertex, a vertex on the mesh boundary, a
+// pairs). A node is a singular vertex, a vertex on the mesh boundary, a
 // vertex where other than two cut edges meet, or one where the cut turns by
-// more than CutParams::arc_turn_deg. A closed arc repeats its first vertex
+// more than CutParams::arc_turn_deg (cut.cpp, find_arcs, says how a turn is
+// measured). A closed arc repeats its first vertex
 // at the end.
 struct CutArc {
   std::vector<int> vertices;

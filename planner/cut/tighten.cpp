@@ -1,0 +1,358 @@
+#include "planner/cut/tighten.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <queue>
+#include <utility>
+
+#include "planner/common/index.hpp"
+#include "planner/common/union_find.hpp"
+
+namespace planner {
+
+namespace {
+
+struct Path {
+  std::vector<int> vertices;
+  std::vector<int> edges;
+  double length = 0.0;
+};
+
+class Tightener {
+ public:
+  Tightener(const HalfedgeMesh& q, const FieldLabels& labels, std::vector<bool>& cut_edge)
+      : q_(q), labels_(labels), cut_edge_(cut_edge), degree_(at(q.num_vertices()), 0) {
+    for (int e = 0; e < q_.num_edges(); ++e) {
+      if (cut_edge_[at(e)]) add(e, 1);
+    }
+  }
+
+  // One pass over the cut's paths between nodes, longest first; returns how
+  // many were replaced by shorter ones.
+  int pass() {
+    std::vector<Path> paths = node_paths();
+    std::sort(paths.begin(), paths.end(),
+              [](const Path& a, const Path& b) { return a.length > b.length; });
+    int replaced = 0;
+    for (const Path& path : paths) replaced += replace(path) ? 1 : 0;
+    return replaced;
+  }
+
+  // Branch nodes of the cut at vertices that need not be on it are ends of
+  // arcs the surface does not ask for, and where they sit decides how long
+  // the paths between them are. Each is moved, in turn, onto the far end of
+  // one of its paths (the arc between them goes) when the cut grows by at
+  // most `allowance` times that path's length, or else to a vertex a
+  // quarter or half along one of its paths, or one edge along, when the cut
+  // gets shorter. Returns how many moved.
+  int move_branches(double allowance) {
+    int moved = 0;
+    for (int x = 0; x < q_.num_vertices(); ++x) {
+      if (degree_[at(x)] < 3 || q_.is_boundary_vertex(x) || singular(x)) continue;
+      std::vector<Path> star;
+      for (Path& path : node_paths()) {
+        const bool starts = path.vertices.front() == x;
+        const bool ends = path.vertices.back() == x;
+        if (ends && !starts) {
+          std::reverse(path.vertices.begin(), path.vertices.end());
+          std::reverse(path.edges.begin(), path.edges.end());
+        }
+        if (starts || ends) star.push_back(std::move(path));
+      }
+      if (star.size() < 2) continue;
+      std::vector<std::size_t> order(star.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::sort(order.begin(), order.end(),
+                [&](std::size_t a, std::size_t b) { return star[a].length < star[b].length; });
+      bool done = false;
+      for (std::size_t i : order) {  // onto a neighbouring node
+        const Path& path = star[i];
+        if (path.vertices.back() == x) continue;
+        done = relocate(x, star, i, path.vertices.size() - 1, allowance * path.length);
+        if (done) break;
+      }
+      for (std::size_t i = 0; !done && i < star.size(); ++i) {  // along a path
+        const std::size_t last = star[i].vertices.size() - 1;
+        for (const std::size_t k : {last / 2, last / 4, std::size_t{1}}) {
+          if (k == 0 || k >= last) continue;
+          done = relocate(x, star, i, k, -1e-9 * star[i].length);
+          if (done) break;
+        }
+      }
+      moved += done ? 1 : 0;
+    }
+    return moved;
+  }
+
+ private:
+  // No consistent labelling exists around a singular vertex (§4.2).
+  bool singular(int v) const { return labels_.corner_count[at(v)] % 4 != 0; }
+  // A vertex the cut must keep: on the mesh boundary, singular, or where
+  // other than two cut edges meet.
+  bool node(int v) const { return q_.is_boundary_vertex(v) || singular(v) || degree_[at(v)] != 2; }
+  // A vertex a new path may run through: interior, not singular, off the cut.
+  bool free_vertex(int v) const {
+    return !q_.is_boundary_vertex(v) && !singular(v) && degree_[at(v)] == 0;
+  }
+
+  void add(int e, int step) {
+    cut_edge_[at(e)] = step > 0;
+    const int h = q_.edge_halfedge(e);
+    degree_[at(q_.from(h))] += step;
+    degree_[at(q_.to(h))] += step;
+  }
+
+  int other_end(int e, int v) const {
+    const int h = q_.edge_halfedge(e);
+    return q_.from(h) == v ? q_.to(h) : q_.from(h);
+  }
+
+  // The cut split at its nodes into paths (a loop through no node starts and
+  // ends at its first vertex).
+  std::vector<Path> node_paths() const {
+    std::vector<std::vector<int>> incident(at(q_.num_vertices()));
+    for (int e = 0; e < q_.num_edges(); ++e) {
+      if (!cut_edge_[at(e)]) continue;
+      const int h = q_.edge_halfedge(e);
+      incident[at(q_.from(h))].push_back(e);
+      incident[at(q_.to(h))].push_back(e);
+    }
+    std::vector<bool> used(at(q_.num_edges()), false);
+    std::vector<Path> paths;
+    auto walk = [&](int start, int first_edge) {
+      Path path{{start}, {}, 0.0};
+      int w = start;
+      int e = first_edge;
+      while (true) {
+        used[at(e)] = true;
+        path.edges.push_back(e);
+        path.length += q_.edge_length(q_.edge_halfedge(e));
+        w = other_end(e, w);
+        path.vertices.push_back(w);
+        if (w == start || node(w)) break;
+        const auto& list = incident[at(w)];
+        const int next = list[0] == e ? list[1] : list[0];
+        if (used[at(next)]) break;
+        e = next;
+      }
+      paths.push_back(std::move(path));
+    };
+    for (int v = 0; v < q_.num_vertices(); ++v) {
+      if (incident[at(v)].empty() || !node(v)) continue;
+      for (int e : incident[at(v)]) {
+        if (!used[at(e)]) walk(v, e);
+      }
+    }
+    for (int e = 0; e < q_.num_edges(); ++e) {
+      if (cut_edge_[at(e)] && !used[at(e)]) walk(q_.from(q_.edge_halfedge(e)), e);
+    }
+    return paths;
+  }
+
+  // Q cut along the cut edges, R: its vertices are classes of corners glued
+  // across uncut edges, and each class on R's boundary knows its loop.
+  struct Cutopen {
+    UnionFind corners;
+    std::vector<int> loop;  // per half-edge root: R's boundary loop, -1 inside
+    int pieces = 0;
+    int vertices = 0;
+  };
+  Cutopen cut_open() const {
+    const int nh = q_.num_halfedges();
+    Cutopen r{UnionFind(at(nh)), std::vector<int>(at(nh), -1)};
+    UnionFind faces(at(q_.num_faces()));
+    auto on_boundary = [&](int h) { return q_.twin(h) < 0 || cut_edge_[at(q_.edge(h))]; };
+    for (int h = 0; h < nh; ++h) {
+      const int t = q_.twin(h);
+      if (t < h || on_boundary(h)) continue;
+      r.corners.unite(h, q_.next(t));
+      r.corners.unite(q_.next(h), t);
+      faces.unite(q_.face(h), q_.face(t));
+    }
+    for (int h = 0; h < nh; ++h) r.vertices += r.corners.find(h) == h ? 1 : 0;
+    for (int f = 0; f < q_.num_faces(); ++f) r.pieces += faces.find(f) == f ? 1 : 0;
+    // R's boundary loops, walked half-edge by half-edge inside R's faces.
+    std::vector<bool> seen(at(nh), false);
+    int loops = 0;
+    for (int h = 0; h < nh; ++h) {
+      if (!on_boundary(h) || seen[at(h)]) continue;
+      for (int x = h; !seen[at(x)];) {
+        seen[at(x)] = true;
+        r.loop[at(r.corners.find(x))] = loops;
+        int y = q_.next(x);
+        while (!on_boundary(y)) y = q_.next(q_.twin(y));
+        x = y;
+      }
+      ++loops;
+    }
+    return r;
+  }
+
+  // Q cut along the cut edges is one piece with Euler characteristic 1: a
+  // disc. On a closed Q a cut of one edge would leave a disc bounded by two
+  // copies of one edge, which is no mesh: the cut keeps two at least.
+  bool is_disc() const {
+    const Cutopen r = cut_open();
+    int cut_edges = 0;
+    for (int e = 0; e < q_.num_edges(); ++e) cut_edges += cut_edge_[at(e)] ? 1 : 0;
+    if (cut_edges == 1) return false;
+    return r.pieces == 1 && r.vertices - (q_.num_edges() + cut_edges) + q_.num_faces() == 1;
+  }
+
+  // The shortest path from a corner class of a to one of b over uncut
+  // interior edges through free vertices, such that cutting R along it keeps
+  // a disc: its ends lie on two different boundary loops of R (R is an
+  // annulus), or one end is inside R (the path is a slit). Empty when there
+  // is none.
+  Path shortest(int a, int b, Cutopen& r) const {
+    const int nv = q_.num_vertices();
+    Path best;
+    best.length = std::numeric_limits<double>::infinity();
+    std::vector<int> sources;
+    for (int h : q_.outgoing(a)) {
+      const int c = r.corners.find(h);
+      if (std::find(sources.begin(), sources.end(), c) == sources.end()) sources.push_back(c);
+    }
+    for (int source : sources) {
+      std::vector<double> dist(at(nv), std::numeric_limits<double>::infinity());
+      std::vector<int> via(at(nv), -1);  // the half-edge that reached the vertex
+      using Item = std::pair<double, int>;
+      std::priority_queue<Item, std::vector<Item>, std::greater<>> heap;
+      auto relax = [&](int v, double d) {
+        for (int h : q_.outgoing(v)) {
+          if (v == a && r.corners.find(h) != source) continue;
+          if (q_.twin(h) < 0 || cut_edge_[at(q_.edge(h))]) continue;
+          const int w = q_.to(h);
+          const double nd = d + q_.edge_length(h);
+          if (w == b) {
+            const int target = r.corners.find(q_.twin(h));
+            const int from_loop = r.loop[at(source)];
+            const int to_loop = r.loop[at(target)];
+            if (from_loop >= 0 && to_loop >= 0 && from_loop == to_loop) continue;
+            if (nd < best.length) {
+              best.length = nd;
+              best.edges.assign(1, q_.edge(h));
+              best.vertices.assign(1, b);
+              for (int x = v; x != a; x = q_.from(via[at(x)])) {
+                best.vertices.push_back(x);
+                best.edges.push_back(q_.edge(via[at(x)]));
+              }
+              best.vertices.push_back(a);
+              std::reverse(best.vertices.begin(), best.vertices.end());
+              std::reverse(best.edges.begin(), best.edges.end());
+            }
+            continue;
+          }
+          if (!free_vertex(w) || nd >= dist[at(w)]) continue;
+          dist[at(w)] = nd;
+          via[at(w)] = h;
+          heap.push({nd, w});
+        }
+      };
+      relax(a, 0.0);
+      while (!heap.empty()) {
+        const auto [d, v] = heap.top();
+        heap.pop();
+        if (d > dist[at(v)] || d >= best.length) continue;
+        relax(v, d);
+      }
+    }
+    if (best.edges.empty()) best.length = 0.0;
+    return best;
+  }
+
+  double cut_length() const {
+    double length = 0.0;
+    for (int e = 0; e < q_.num_edges(); ++e) {
+      if (cut_edge_[at(e)]) length += q_.edge_length(q_.edge_halfedge(e));
+    }
+    return length;
+  }
+
+  // Moves branch node x to t = star[i].vertices[k]. Every other path of the
+  // star is replaced by the shortest one from its far end to t that keeps a
+  // disc (a loop at t where it was a loop at x or already ended at t); then
+  // what is left of star[i] between x and t goes, and a loop through x
+  // becomes the shortest loop through t. Kept when the cut grows by at most
+  // `growth`, a length (negative: it must shrink by that much).
+  bool relocate(int x, const std::vector<Path>& star, std::size_t i, std::size_t k, double growth) {
+    const std::vector<bool> saved_cut = cut_edge_;
+    const std::vector<int> saved_degree = degree_;
+    const double before = cut_length();
+    const Path& chosen = star[i];
+    const int t = chosen.vertices[k];
+    const bool chosen_loop = chosen.vertices.back() == x;
+    auto reroute = [&](int from, int to) {
+      Cutopen r = cut_open();
+      const Path path = shortest(from, to, r);
+      for (int e : path.edges) add(e, 1);
+      return !path.edges.empty();
+    };
+    auto restore = [&] {
+      cut_edge_ = saved_cut;
+      degree_ = saved_degree;
+      return false;
+    };
+    for (std::size_t j = 0; j < star.size(); ++j) {
+      if (j == i) continue;
+      for (int e : star[j].edges) {
+        if (!cut_edge_[at(e)]) return restore();
+        add(e, -1);
+      }
+      const int far = star[j].vertices.back();
+      if (!reroute(far == x ? t : far, t)) return restore();
+    }
+    if (chosen_loop) {
+      for (int e : chosen.edges) add(e, -1);
+      if (!reroute(t, t)) return restore();
+    } else {
+      for (std::size_t e = 0; e < k; ++e) add(chosen.edges[e], -1);
+    }
+    if (is_disc() && cut_length() <= before + growth) return true;
+    return restore();
+  }
+
+  // Replaces `path` by the shortest one between its ends that keeps Q cut
+  // into a disc, when that is shorter.
+  bool replace(const Path& path) {
+    for (int e : path.edges) {
+      if (!cut_edge_[at(e)]) return false;  // an earlier replacement took it
+    }
+    const int a = path.vertices.front();
+    const int b = path.vertices.back();
+    for (int e : path.edges) add(e, -1);
+    Cutopen r = cut_open();
+    const Path shorter = shortest(a, b, r);
+    if (!shorter.edges.empty() && shorter.length < path.length * (1.0 - 1e-6)) {
+      for (int e : shorter.edges) add(e, 1);
+      if (is_disc()) return true;
+      for (int e : shorter.edges) add(e, -1);
+    }
+    for (int e : path.edges) add(e, 1);
+    return false;
+  }
+
+  const HalfedgeMesh& q_;
+  const FieldLabels& labels_;
+  std::vector<bool>& cut_edge_;
+  std::vector<int> degree_;  // per vertex: cut edges at it
+};
+
+}  // namespace
+
+int tighten_cut(const HalfedgeMesh& q, const FieldLabels& labels, std::vector<bool>& cut_edge) {
+  Tightener tightener(q, labels, cut_edge);
+  int changes = 0;
+  // A branch node moves onto a neighbouring node when the cut grows by at
+  // most the length of the path between them (docs/cutting.md).
+  constexpr double kMergeAllowance = 1.0;
+  for (int round = 0; round < 8; ++round) {
+    int now = tightener.pass();
+    now += tightener.move_branches(kMergeAllowance);
+    changes += now;
+    if (now == 0) break;
+  }
+  return changes;
+}
+
+}  // namespace planner
