@@ -30,7 +30,12 @@ void add_cut_options(po::options_description& options, CutOptions& cut) {
       "growth", po::value<std::string>(&cut.growth)->default_value(cut.growth),
       "order of equal cuttability scores: random (§4.2) or square (the ring nearest the seed "
       "first)")("arc-turn", po::value<double>(&p.arc_turn_deg)->default_value(p.arc_turn_deg),
-                "a cut-arc ends where the cut turns by more than this many degrees");
+                "a cut-arc ends where the cut turns by more than this many degrees")(
+      "tighten", po::value<std::string>(&cut.tighten)->default_value(cut.tighten),
+      "on: replace each stretch of the grown cut by the shortest one (along the labels where "
+      "that is nearly as short) that still opens the surface into a disc, and move branch "
+      "points onto the vertices the cut must reach; off: the cut as the patch growing leaves "
+      "it (§4.2); auto: on with --proxy field, off with remesh");
 }
 
 std::string check_cut_options(CutOptions& cut) {
@@ -49,6 +54,10 @@ std::string check_cut_options(CutOptions& cut) {
   if (cut.growth != "random" && cut.growth != "square")
     return "--growth takes random or square, not '" + cut.growth + "'";
   p.square_growth = cut.growth == "square";
+  if (cut.tighten != "on" && cut.tighten != "off" && cut.tighten != "auto")
+    return "--tighten takes auto, on or off, not '" + cut.tighten + "'";
+  p.tighten = cut.tighten == "on" ||
+              (cut.tighten == "auto" && cut.params.proxy.method == planner::ProxyMethod::Field);
   if (!(p.arc_turn_deg >= 0.0) || p.arc_turn_deg > 180.0)
     return "--arc-turn must be between 0 and 180 degrees";
   return {};

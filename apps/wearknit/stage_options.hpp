@@ -18,6 +18,7 @@ struct CutOptions {
   std::string vanishing = "acute";
   std::string proxy = "remesh";
   std::string growth = "random";
+  std::string tighten = "auto";
   double vanishing_slack_deg = 30.0;
 };
 void add_cut_options(boost::program_options::options_description& options, CutOptions& cut);

@@ -75,9 +75,9 @@ struct CutParams {
   // (max(|u|, |v|)) first, so the patch grows as a square; else in the
   // order of the random keys (§4.2).
   bool square_growth = false;
-  // Slide the grown cut across single faces while that shortens it
-  // (tighten.hpp); departs from §4.2, docs/cutting.md says why.
-  bool tighten = true;
+  // Replace the grown cut by a shorter one that opens Q into the same kind
+  // of disc (tighten.hpp); departs from §4.2, docs/cutting.md says why.
+  bool tighten = false;
 };
 
 // A cut-arc: a sequence of cut edges of Q (§3, §4) between nodes of the cut

@@ -15,7 +15,7 @@ namespace {
 struct Path {
   std::vector<int> vertices;
   std::vector<int> edges;
-  double length = 0.0;
+  double cost = 0.0;  // the sum of its edges' costs
 };
 
 class Tightener {
@@ -25,6 +25,38 @@ class Tightener {
     for (int e = 0; e < q_.num_edges(); ++e) {
       if (cut_edge_[at(e)]) add(e, 1);
     }
+    // An edge costs its length, times 1 + kAcross sin²(2θ) for the angle θ
+    // it makes with the labels' directions in its faces: along a course or
+    // a wale it costs its length, at 45° four times that, so the new paths
+    // run along the rows and wales of §4.1 where that is nearly as short.
+    constexpr double kAcross = 3.0;
+    cost_.assign(at(q_.num_edges()), 0.0);
+    // Per face: its course direction, from the sides the labels put along it.
+    std::vector<Vec3> axis(at(q_.num_faces()), Vec3::Zero());
+    for (int f = 0; f < q_.num_faces(); ++f) {
+      for (int i = 0; i < q_.degree(f); ++i) {
+        const int h = q_.face_start(f) + i;
+        const int d = halfedge_direction(q_, labels_, 0, h);
+        const Vec3 v = q_.position(q_.to(h)) - q_.position(q_.from(h));
+        if (d == 0) axis[at(f)] += v;
+        if (d == 2) axis[at(f)] -= v;
+      }
+    }
+    for (int e = 0; e < q_.num_edges(); ++e) {
+      const int h = q_.edge_halfedge(e);
+      const Vec3 v = q_.position(q_.to(h)) - q_.position(q_.from(h));
+      double mis = 0.0;
+      int n = 0;
+      for (int x : {h, q_.twin(h)}) {
+        if (x < 0) continue;
+        const Vec3& a = axis[at(q_.face(x))];
+        const double cos_sin = v.dot(a) * v.cross(a).norm();  // |v|²|a|² cos θ sin θ
+        const double scale = v.squaredNorm() * a.squaredNorm();
+        if (scale > 0.0) mis += 4.0 * cos_sin * cos_sin / (scale * scale);
+        ++n;
+      }
+      cost_[at(e)] = v.norm() * (1.0 + kAcross * (n > 0 ? mis / n : 0.0));
+    }
   }
 
   // One pass over the cut's paths between nodes, longest first; returns how
@@ -32,7 +64,7 @@ class Tightener {
   int pass() {
     std::vector<Path> paths = node_paths();
     std::sort(paths.begin(), paths.end(),
-              [](const Path& a, const Path& b) { return a.length > b.length; });
+              [](const Path& a, const Path& b) { return a.cost > b.cost; });
     int replaced = 0;
     for (const Path& path : paths) replaced += replace(path) ? 1 : 0;
     return replaced;
@@ -42,7 +74,7 @@ class Tightener {
   // arcs the surface does not ask for, and where they sit decides how long
   // the paths between them are. Each is moved, in turn, onto the far end of
   // one of its paths (the arc between them goes) when the cut grows by at
-  // most `allowance` times that path's length, or else to a vertex a
+  // most `allowance` times that path's cost, or else to a vertex a
   // quarter or half along one of its paths, or one edge along, when the cut
   // gets shorter. Returns how many moved.
   int move_branches(double allowance) {
@@ -63,19 +95,19 @@ class Tightener {
       std::vector<std::size_t> order(star.size());
       for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
       std::sort(order.begin(), order.end(),
-                [&](std::size_t a, std::size_t b) { return star[a].length < star[b].length; });
+                [&](std::size_t a, std::size_t b) { return star[a].cost < star[b].cost; });
       bool done = false;
       for (std::size_t i : order) {  // onto a neighbouring node
         const Path& path = star[i];
         if (path.vertices.back() == x) continue;
-        done = relocate(x, star, i, path.vertices.size() - 1, allowance * path.length);
+        done = relocate(x, star, i, path.vertices.size() - 1, allowance * path.cost);
         if (done) break;
       }
       for (std::size_t i = 0; !done && i < star.size(); ++i) {  // along a path
         const std::size_t last = star[i].vertices.size() - 1;
         for (const std::size_t k : {last / 2, last / 4, std::size_t{1}}) {
           if (k == 0 || k >= last) continue;
-          done = relocate(x, star, i, k, -1e-9 * star[i].length);
+          done = relocate(x, star, i, k, -1e-9 * star[i].cost);
           if (done) break;
         }
       }
@@ -126,7 +158,7 @@ class Tightener {
       while (true) {
         used[at(e)] = true;
         path.edges.push_back(e);
-        path.length += q_.edge_length(q_.edge_halfedge(e));
+        path.cost += cost_[at(e)];
         w = other_end(e, w);
         path.vertices.push_back(w);
         if (w == start || node(w)) break;
@@ -207,7 +239,7 @@ class Tightener {
   Path shortest(int a, int b, Cutopen& r) const {
     const int nv = q_.num_vertices();
     Path best;
-    best.length = std::numeric_limits<double>::infinity();
+    best.cost = std::numeric_limits<double>::infinity();
     std::vector<int> sources;
     for (int h : q_.outgoing(a)) {
       const int c = r.corners.find(h);
@@ -223,14 +255,14 @@ class Tightener {
           if (v == a && r.corners.find(h) != source) continue;
           if (q_.twin(h) < 0 || cut_edge_[at(q_.edge(h))]) continue;
           const int w = q_.to(h);
-          const double nd = d + q_.edge_length(h);
+          const double nd = d + cost_[at(q_.edge(h))];
           if (w == b) {
             const int target = r.corners.find(q_.twin(h));
             const int from_loop = r.loop[at(source)];
             const int to_loop = r.loop[at(target)];
             if (from_loop >= 0 && to_loop >= 0 && from_loop == to_loop) continue;
-            if (nd < best.length) {
-              best.length = nd;
+            if (nd < best.cost) {
+              best.cost = nd;
               best.edges.assign(1, q_.edge(h));
               best.vertices.assign(1, b);
               for (int x = v; x != a; x = q_.from(via[at(x)])) {
@@ -253,20 +285,20 @@ class Tightener {
       while (!heap.empty()) {
         const auto [d, v] = heap.top();
         heap.pop();
-        if (d > dist[at(v)] || d >= best.length) continue;
+        if (d > dist[at(v)] || d >= best.cost) continue;
         relax(v, d);
       }
     }
-    if (best.edges.empty()) best.length = 0.0;
+    if (best.edges.empty()) best.cost = 0.0;
     return best;
   }
 
-  double cut_length() const {
-    double length = 0.0;
+  double cut_cost() const {
+    double cost = 0.0;
     for (int e = 0; e < q_.num_edges(); ++e) {
-      if (cut_edge_[at(e)]) length += q_.edge_length(q_.edge_halfedge(e));
+      if (cut_edge_[at(e)]) cost += cost_[at(e)];
     }
-    return length;
+    return cost;
   }
 
   // Moves branch node x to t = star[i].vertices[k]. Every other path of the
@@ -274,11 +306,11 @@ class Tightener {
   // disc (a loop at t where it was a loop at x or already ended at t); then
   // what is left of star[i] between x and t goes, and a loop through x
   // becomes the shortest loop through t. Kept when the cut grows by at most
-  // `growth`, a length (negative: it must shrink by that much).
+  // `growth` in cost (negative: it must fall by that much).
   bool relocate(int x, const std::vector<Path>& star, std::size_t i, std::size_t k, double growth) {
     const std::vector<bool> saved_cut = cut_edge_;
     const std::vector<int> saved_degree = degree_;
-    const double before = cut_length();
+    const double before = cut_cost();
     const Path& chosen = star[i];
     const int t = chosen.vertices[k];
     const bool chosen_loop = chosen.vertices.back() == x;
@@ -308,7 +340,7 @@ class Tightener {
     } else {
       for (std::size_t e = 0; e < k; ++e) add(chosen.edges[e], -1);
     }
-    if (is_disc() && cut_length() <= before + growth) return true;
+    if (is_disc() && cut_cost() <= before + growth) return true;
     return restore();
   }
 
@@ -323,7 +355,7 @@ class Tightener {
     for (int e : path.edges) add(e, -1);
     Cutopen r = cut_open();
     const Path shorter = shortest(a, b, r);
-    if (!shorter.edges.empty() && shorter.length < path.length * (1.0 - 1e-6)) {
+    if (!shorter.edges.empty() && shorter.cost < path.cost * (1.0 - 1e-6)) {
       for (int e : shorter.edges) add(e, 1);
       if (is_disc()) return true;
       for (int e : shorter.edges) add(e, -1);
@@ -335,7 +367,8 @@ class Tightener {
   const HalfedgeMesh& q_;
   const FieldLabels& labels_;
   std::vector<bool>& cut_edge_;
-  std::vector<int> degree_;  // per vertex: cut edges at it
+  std::vector<int> degree_;   // per vertex: cut edges at it
+  std::vector<double> cost_;  // per edge: its length, more across the labels
 };
 
 }  // namespace
@@ -344,7 +377,7 @@ int tighten_cut(const HalfedgeMesh& q, const FieldLabels& labels, std::vector<bo
   Tightener tightener(q, labels, cut_edge);
   int changes = 0;
   // A branch node moves onto a neighbouring node when the cut grows by at
-  // most the length of the path between them (docs/cutting.md).
+  // most the cost of the path between them (docs/cutting.md).
   constexpr double kMergeAllowance = 1.0;
   for (int round = 0; round < 8; ++round) {
     int now = tightener.pass();

@@ -14,6 +14,8 @@ namespace planner {
 // vertex that must be on the cut (singular, on the mesh boundary) on it. `cut_edge` is per
 // edge of q and is changed in place; returns the number of moves.
 //
+// Paths are measured by a cost: an edge's length, up to four times that
+// for an edge at 45° to the labels' directions (tighten.cpp).
 // Two kinds of move, repeated until neither changes the cut:
 //  - every path of the cut between two nodes is replaced by the shortest
 //    path between its ends that still leaves Q one disc (on Q cut along the

@@ -157,6 +157,9 @@ TEST(CutCliTest, ProxyGrowthAndArcTurnOptionsAreCheckedAndRecorded) {
   const auto growth = run_wearknit("cut x.obj -o out --growth round");
   EXPECT_EQ(growth.exit_code, 2);
   EXPECT_EQ(growth.err, "wearknit cut: --growth takes random or square, not 'round'\n");
+  const auto tighten = run_wearknit("cut x.obj -o out --tighten yes");
+  EXPECT_EQ(tighten.exit_code, 2);
+  EXPECT_EQ(tighten.err, "wearknit cut: --tighten takes auto, on or off, not 'yes'\n");
   const auto turn = run_wearknit("cut x.obj -o out --arc-turn 200");
   EXPECT_EQ(turn.exit_code, 2);
   EXPECT_EQ(turn.err, "wearknit cut: --arc-turn must be between 0 and 180 degrees\n");
@@ -187,6 +190,16 @@ TEST(CutCliTest, ProxyGrowthAndArcTurnOptionsAreCheckedAndRecorded) {
   EXPECT_EQ(kept["proxy"]["method"], "input");
   EXPECT_EQ(kept["proxy"]["input_verdict"], "");
   EXPECT_EQ(kept["params"]["growth"], "random");
+  // --tighten auto: on with the field proxy, off with the default one. On
+  // torus-qd's field proxy (no singular vertex) the tightened cut is two
+  // loops and what joins them, 3 arcs, and here a few more where it turns
+  // by over 90° (--arc-turn 90); the grown cut of that proxy has 49 arcs.
+  EXPECT_EQ(replaced["params"]["tighten"], true);
+  EXPECT_EQ(kept["params"]["tighten"], false);
+  EXPECT_EQ(singular, 0);
+  EXPECT_LE(replaced["arcs"].get<int>(), 6);
+  // The cut folder carries the garment's surface for the stitch mesh.
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "field" / "surface.obj"));
   EXPECT_GT(kept["proxy"]["adjacent_pairs"].get<int>(), 0);
   std::filesystem::remove_all(dir);
 }
