@@ -24,6 +24,7 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 constexpr const char* kProxyHeader = "wearknit proxy Q (quads and triangles), mm";
+constexpr const char* kSurfaceHeader = "wearknit garment surface as cut, mm";
 constexpr const char* kDiscHeader =
     "wearknit cut-mesh: one disc; faces as in proxy.obj, vertices duplicated along cuts";
 
@@ -139,7 +140,8 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
             {"vanishing", vanishing_name(r.params.vanishing.method)},
             {"vanishing_slack_deg", r.params.vanishing.slack_deg},
             {"arc_turn_deg", r.params.arc_turn_deg},
-            {"growth", r.params.square_growth ? "square" : "random"}}},
+            {"growth", r.params.square_growth ? "square" : "random"},
+            {"tighten", r.params.tighten}}},
           {"irregular_vertices", cut.labels.irregular_vertices},
           {"irregular_vertex_count", s.irregular_vertices},
           {"cut_edges", s.cut_edges},
@@ -232,6 +234,8 @@ CutReport report_from_json(const json& r) {
   report.params.vanishing.slack_deg = params.value("vanishing_slack_deg", 0.0);
   report.params.arc_turn_deg = params.value("arc_turn_deg", report.params.arc_turn_deg);
   report.params.square_growth = params.value("growth", std::string("random")) == "square";
+  // A report without the field predates tightening: its cut was not tightened.
+  report.params.tighten = params.value("tighten", false);
   report.picture_px = r.value("picture_px", 0);
   const json time = r.value("time_s", json::object());
   report.load_seconds = time.value("load", 0.0);
@@ -256,9 +260,12 @@ std::string write_cut(const std::string& dir, const Cut& cut, const CutPictures&
   const std::string disc = obj_text(mesh.disc, kDiscHeader);
   const json labels = labels_json(mesh);
   const json arcs = arcs_json(mesh);
+  const std::string surface =
+      cut.surface.faces.empty() ? std::string() : obj_text(cut.surface, kSurfaceHeader);
   // The id covers everything a later stage reads of the cut.
   std::uint64_t id = fingerprint(proxy);
   id = fingerprint(disc, id);
+  if (!surface.empty()) id = fingerprint(surface, id);
   id = fingerprint(labels.dump(), id);
   id = fingerprint(arcs.dump(), id);
   if (id_out != nullptr) *id_out = id;
@@ -272,9 +279,14 @@ std::string write_cut(const std::string& dir, const Cut& cut, const CutPictures&
   cut_file["report"]["picture_px"] = pictures.draw ? pictures.panel_px : 0;
   // A cut made without the garment (a proxy cut as it is) records no girth.
   if (!cut.girth_mm.empty()) cut_file["girth_mm"] = girth_json(cut.girth_mm);
-  const std::pair<const char*, const std::string*> objs[] = {{"proxy.obj", &proxy},
-                                                             {"cut-mesh.obj", &disc}};
+  const std::pair<const char*, const std::string*> objs[] = {
+      {"proxy.obj", &proxy}, {"cut-mesh.obj", &disc}, {"surface.obj", &surface}};
   for (const auto& [name, text] : objs) {
+    if (text->empty()) {  // a cut made without the garment has no surface
+      std::error_code ignored;
+      fs::remove(base / name, ignored);
+      continue;
+    }
     const std::string* body = text;
     const std::string failure = knitout::write_file_atomically(
         (base / name).string(), [body](std::ostream& out) { out << *body; });
@@ -398,6 +410,12 @@ std::optional<Cut> read_cut(const std::string& dir, knitout::DiagnosticSink& sin
       cut.arcs.push_back(std::move(arc));
     }
     cut.disc = std::move(*disc);
+    // The garment's surface, where the cut recorded it (older folders do not).
+    if (fs::is_regular_file(base / "surface.obj")) {
+      auto surface = read_polygon_soup((base / "surface.obj").string(), sink);
+      if (!surface) return std::nullopt;
+      result.surface = std::move(*surface);
+    }
     cut.disc_source = std::move(source);
     result.report = report_from_json(cuts->value("report", json::object()));
     if (const auto g = cuts->find("girth_mm"); g != cuts->end()) {

@@ -136,6 +136,7 @@ Cut cut_garment(const PolygonMesh& garment, const CutStageParams& params) {
 
   start = std::chrono::steady_clock::now();
   result.girth_mm = girth_at(garment, measure_girth(garment), q.polygons().positions);
+  result.surface = garment;
   report.girth_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();

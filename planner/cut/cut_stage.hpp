@@ -77,6 +77,11 @@ struct Cut {
   // stitch-mesh stage finds the fine features in it. Empty for a cut
   // folder that does not record it.
   std::vector<double> girth_mm;
+  // The garment's surface as it was cut (scaled, in mm): the stitch mesh is
+  // laid on it, so the knitted piece keeps the garment's shape rather than
+  // Q's facets (surface.obj in the folder). Empty for a cut folder that
+  // does not record it; the stitch mesh then lies on the cut mesh.
+  PolygonMesh surface;
 };
 
 struct CutStageParams {

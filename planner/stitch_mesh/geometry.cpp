@@ -15,13 +15,14 @@ Vec3 face_normal(const LabelledDisc& disc, const std::vector<int>& face) {
 }
 
 cloth::TriangleMeshQuery disc_surface(const LabelledDisc& disc) {
+  const PolygonMesh& mesh = disc.surface.faces.empty() ? disc : disc.surface;
   std::vector<std::array<int, 3>> triangles;
-  for (const std::vector<int>& face : disc.faces) {
+  for (const std::vector<int>& face : mesh.faces) {
     for (std::size_t i = 1; i + 1 < face.size(); ++i) {
       triangles.push_back({face[0], face[i], face[i + 1]});
     }
   }
-  return cloth::TriangleMeshQuery(disc.positions, std::move(triangles));
+  return cloth::TriangleMeshQuery(mesh.positions, std::move(triangles));
 }
 
 std::optional<double> sphere_exit(const Vec3& a, const Vec3& e, const Vec3& centre, double radius) {

@@ -1,6 +1,6 @@
 // Step 5 of the stitch mesher (stitch_mesher.hpp): the stitch vertices
-// inside the sheet moved over the cut mesh towards their sides' target
-// lengths.
+// inside the sheet moved over the garment's surface (or the cut mesh, where
+// the disc does not carry it) towards their sides' target lengths.
 #include <algorithm>
 #include <cstdint>
 #include <map>
@@ -55,6 +55,16 @@ int relax_positions(StitchMesh& mesh, const LabelledDisc& disc, int sweeps) {
     const double target = role == EdgeRole::Wale ? mesh.wale_mm : mesh.course_mm;
     springs[side.first].push_back({side.second, target});
     springs[side.second].push_back({side.first, target});
+  }
+  // On the garment's own surface, the sheet's edge moves onto it too: it
+  // lies on the cut mesh's boundary, whose edges are chords of the garment
+  // (a move of more than a wale would be to another part of it).
+  if (!disc.surface.faces.empty()) {
+    for (std::size_t v = 0; v < count; ++v) {
+      if (!fixed[v]) continue;
+      const Vec3 on = surface.closest_point(mesh.positions[v]);
+      if ((on - mesh.positions[v]).norm() <= mesh.wale_mm) mesh.positions[v] = on;
+    }
   }
   std::vector<Vec3> normals;
   for (const StitchFace& face : mesh.faces) normals.push_back(polygon_normal(mesh, face));

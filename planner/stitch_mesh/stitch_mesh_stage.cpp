@@ -101,7 +101,8 @@ std::optional<StitchMeshOutcome> mesh_stitches(const Cut& cut, const StitchMeshS
   FineFeatures fine = fine_features(cut, params);
   report_fine_features(fine, params.refuse_fine_features, source, sink);
   if (sink.error_count() != errors_before) return std::nullopt;
-  const LabelledDisc disc = labelled_disc(cut.mesh);
+  LabelledDisc disc = labelled_disc(cut.mesh);
+  disc.surface = cut.surface;
   for (const std::string& p : check_disc(disc)) sink.error(source, 0, 0, "P085", p);
   if (sink.error_count() != errors_before) return std::nullopt;
   StitchMeshParams mesher = params.mesher;
@@ -157,6 +158,23 @@ std::optional<StitchMeshOutcome> mesh_stitches(const Cut& cut, const StitchMeshS
             << " of stitch-mesh.smobj): they span a gap of it, and the knitted piece will not "
                "take the surface's shape there (docs/stitch-mesh.md, \"Fans\")";
     sink.warning(source, 0, 0, "P087", message.str());
+  }
+  // The shape: how far the stitches lie from the garment (or the cut mesh).
+  report.on_garment = !cut.surface.faces.empty();
+  {
+    PolygonMesh vertices;
+    vertices.positions = result.mesh.positions;
+    report.shape = distance_to_surface(vertices, report.on_garment ? cut.surface : cut.mesh.disc);
+  }
+  if (report.shape.max_mm > 0.5 * params.gauge.wale_mm) {
+    std::ostringstream message;
+    message << std::fixed << std::setprecision(2) << "stitch vertices lie up to "
+            << report.shape.max_mm << " mm from the "
+            << (report.on_garment ? "garment's surface"
+                                  : "cut mesh (the cut folder has no surface.obj)")
+            << ", more than half a wale (" << 0.5 * params.gauge.wale_mm
+            << " mm): the knitted piece departs from the shape there";
+    sink.warning(source, 0, 0, "P090", message.str());
   }
   report.figures = measure(result.mesh);
   report.stats = result.stats;

@@ -10,6 +10,7 @@
 #include "knitout/diagnostic.hpp"
 #include "planner/cut/cut_stage.hpp"
 #include "planner/mesh/girth.hpp"
+#include "planner/mesh/surface_distance.hpp"
 #include "planner/stitch_mesh/gauge.hpp"
 #include "planner/stitch_mesh/stitch_mesh.hpp"
 #include "planner/stitch_mesh/stitch_mesher.hpp"
@@ -53,6 +54,12 @@ struct StitchMeshReport {
   StitchMeshStats stats;
   StabilityCounts stability;
   OffSurface off_surface;
+  // How far the stitch vertices lie from the garment's surface (item 5 of
+  // docs/stitch-mesh.md, "On the garment's surface"); measured against the
+  // cut mesh where the cut folder does not record the garment
+  // (`on_garment` false).
+  SurfaceDistance shape;
+  bool on_garment = false;
   // The way the rows run: the cut's course sides (false) or its wale sides;
   // with KnitDirection::Best, the scores of both ways.
   bool turned = false;

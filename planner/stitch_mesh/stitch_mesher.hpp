@@ -48,6 +48,10 @@ struct LabelledDisc : PolygonMesh {
   std::vector<std::vector<int>> directions;  // per face, per side (side i: corner i -> i+1)
   // Optional: per face, per side, the cut-arc of a boundary side (kNoArc if none).
   std::vector<std::vector<std::int32_t>> arcs;
+  // Optional: the garment's surface (Cut::surface). Stitch vertices are
+  // relaxed onto it, and the stitches off the surface measured against it;
+  // empty: the disc itself.
+  PolygonMesh surface;
 };
 
 // Problems that make a LabelledDisc unusable (sizes, indices, degenerate

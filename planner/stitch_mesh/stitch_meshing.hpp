@@ -52,8 +52,9 @@ inline std::uint64_t key(int a, int b) {
 // Twice the vector area of a disc face (Newell), not normalised.
 Vec3 face_normal(const LabelledDisc& disc, const std::vector<int>& face);
 
-// The disc as triangles (fans of its faces), for exact distances and
-// nearest points.
+// The surface the stitches lie on, as triangles (fans of its faces), for
+// exact distances and nearest points: the garment's (LabelledDisc::surface)
+// where the disc has it, else the disc itself.
 cloth::TriangleMeshQuery disc_surface(const LabelledDisc& disc);
 
 // The larger t at which a + t e is `radius` from `centre`, or nullopt when

@@ -86,7 +86,11 @@ inline void cut_into(const fs::path& shared, const std::string& name, const fs::
   EXPECT_TRUE(check_disc(labelled_disc(cut)).empty()) << file << ": the cut is not a disc";
   std::error_code ignored;
   fs::remove_all(dir, ignored);
-  ASSERT_EQ(write_cut(dir.string(), Cut{cut, {}, 0, {}}, {false, 600}), "") << name;
+  // The garment's surface goes with it, as the cut stage writes it.
+  Cut written;
+  written.mesh = cut;
+  written.surface = std::move(*mesh);
+  ASSERT_EQ(write_cut(dir.string(), written, {false, 600}), "") << name;
 }
 
 // The cut of the shared mesh `name`, read from its cut folder (the

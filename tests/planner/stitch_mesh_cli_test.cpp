@@ -53,6 +53,21 @@ TEST(StitchMeshCliTest, MeshesACutFolderAndKeepsTheCutReport) {
   const auto off_faces = s.at("off_surface").at("faces").get<std::size_t>();
   EXPECT_EQ(off_faces > 0, result.err.find("P087") != std::string::npos) << result.err;
   EXPECT_EQ(off_faces > 0, s.at("off_surface").at("max_offset_mm").get<double>() > 2.875);
+  // The stitches lie on the garment's surface (surface.obj of the cut),
+  // within half a wale of it, and P090 says when any does not.
+  const auto& shape = s.at("surface_distance");
+  EXPECT_EQ(shape.at("against"), "garment");
+  EXPECT_LE(shape.at("mean_mm").get<double>(), shape.at("max_mm").get<double>());
+  EXPECT_LT(shape.at("max_mm").get<double>(), 0.5 * 2.875);
+  EXPECT_EQ(result.err.find("P090"), std::string::npos) << result.err;
+  std::filesystem::remove(dir / "surface.obj");
+  const auto without = run_wearknit("stitch-mesh '" + dir.string() + "' --no-picture");
+  ASSERT_EQ(without.exit_code, 0) << without.err;
+  EXPECT_EQ(nlohmann::json::parse(read_file(dir / "report.json"))
+                .at("stitch_mesh")
+                .at("surface_distance")
+                .at("against"),
+            "cut mesh");
   EXPECT_GT(s.at("relax_sweeps").get<int>(), 0);
   EXPECT_LE(s.at("relax_sweeps").get<int>(), 150);
   EXPECT_GE(s.at("relax_seconds").get<double>(), 0.0);

@@ -514,5 +514,28 @@ TEST(StitchMeshDirectionTest, BestKeepsTheWayWithTheHigherScore) {
   EXPECT_LT(stitch_mesh_score(failed, disc, params.wale_mm), best.score_as_cut);
 }
 
+TEST(StitchMeshRemeshTest, StitchesLieOnTheGarmentsSurfaceNotOnTheDiscsFacets) {
+  // A cylinder of radius 30 mm cut into 8 flat facets round (their middles
+  // lie 2.3 mm inside it), given the round cylinder as the garment's surface.
+  const double radius = 30.0;
+  LabelledDisc disc = sd::cylinder(radius, 40, 8, 10);
+  const LabelledDisc round = sd::cylinder(radius, 40, 256, 10);
+  auto farthest = [&](const StitchMesh& mesh) {
+    double far = 0.0;
+    for (const Vec3& p : mesh.positions) far = std::max(far, std::abs(p.head<2>().norm() - radius));
+    return far;
+  };
+  const StitchMeshResult on_facets = make_stitch_mesh(disc, default_params());
+  ASSERT_TRUE(on_facets.problems.empty()) << on_facets.problems.front();
+  disc.surface.positions = round.positions;
+  disc.surface.faces = round.faces;
+  const StitchMeshResult on_surface = make_stitch_mesh(disc, default_params());
+  ASSERT_TRUE(on_surface.problems.empty()) << on_surface.problems.front();
+  EXPECT_GT(farthest(on_facets.mesh), 1.0);
+  // The round cylinder's own facets (256 round) are 0.002 mm deep.
+  EXPECT_LT(farthest(on_surface.mesh), 0.01);
+  EXPECT_EQ(on_surface.mesh.faces.size(), on_facets.mesh.faces.size());
+}
+
 }  // namespace
 }  // namespace planner
