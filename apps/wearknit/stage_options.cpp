@@ -24,13 +24,15 @@ void add_cut_options(po::options_description& options, CutOptions& cut) {
       "proxy-edge-mm", po::value<double>(&cut.params.proxy.proxy_edge_mm)->default_value(0.0),
       "edge length of the remeshed proxy for triangle input (0: about 3000 quads)")(
       "proxy", po::value<std::string>(&cut.proxy)->default_value(cut.proxy),
-      "proxy of a surface that is not quad-dominant: remesh (field-aligned quads, §4.1) or "
-      "field (triangles whose vanishing corners follow the smoothest cross field; it also "
-      "replaces a quad-dominant input that carries avoidable singularities)")(
+      "proxy of a surface that is not quad-dominant: field (triangles whose vanishing corners "
+      "follow the smoothest cross field; it also replaces a quad-dominant input that carries "
+      "avoidable singularities) or remesh (field-aligned quads, §4.1, a quad-dominant input "
+      "kept as it is)")(
       "growth", po::value<std::string>(&cut.growth)->default_value(cut.growth),
-      "order of equal cuttability scores: random (§4.2) or square (the ring nearest the seed "
-      "first)")("arc-turn", po::value<double>(&p.arc_turn_deg)->default_value(p.arc_turn_deg),
-                "a cut-arc ends where the cut turns by more than this many degrees")(
+      "order of equal cuttability scores: random (§4.2), square (the ring nearest the seed "
+      "first) or auto (square with --proxy field, random with remesh)")(
+      "arc-turn", po::value<double>(&p.arc_turn_deg)->default_value(p.arc_turn_deg),
+      "a cut-arc ends where the cut turns by more than this many degrees")(
       "tighten", po::value<std::string>(&cut.tighten)->default_value(cut.tighten),
       "on: replace each stretch of the grown cut by the shortest one (along the labels where "
       "that is nearly as short) that still opens the surface into a disc, and move branch "
@@ -51,13 +53,13 @@ std::string check_cut_options(CutOptions& cut) {
   const auto proxy = planner::proxy_method(cut.proxy);
   if (!proxy) return "--proxy takes field or remesh, not '" + cut.proxy + "'";
   cut.params.proxy.method = *proxy;
-  if (cut.growth != "random" && cut.growth != "square")
-    return "--growth takes random or square, not '" + cut.growth + "'";
-  p.square_growth = cut.growth == "square";
+  if (cut.growth != "random" && cut.growth != "square" && cut.growth != "auto")
+    return "--growth takes auto, random or square, not '" + cut.growth + "'";
+  const bool field = cut.params.proxy.method == planner::ProxyMethod::Field;
+  p.square_growth = cut.growth == "square" || (cut.growth == "auto" && field);
   if (cut.tighten != "on" && cut.tighten != "off" && cut.tighten != "auto")
     return "--tighten takes auto, on or off, not '" + cut.tighten + "'";
-  p.tighten = cut.tighten == "on" ||
-              (cut.tighten == "auto" && cut.params.proxy.method == planner::ProxyMethod::Field);
+  p.tighten = cut.tighten == "on" || (cut.tighten == "auto" && field);
   if (!(p.arc_turn_deg >= 0.0) || p.arc_turn_deg > 180.0)
     return "--arc-turn must be between 0 and 180 degrees";
   return {};

@@ -16,8 +16,8 @@ namespace wearknit::cli {
 struct CutOptions {
   planner::CutStageParams params;
   std::string vanishing = "acute";
-  std::string proxy = "remesh";
-  std::string growth = "random";
+  std::string proxy = "field";
+  std::string growth = "auto";
   std::string tighten = "auto";
   double vanishing_slack_deg = 30.0;
 };

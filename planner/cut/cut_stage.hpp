@@ -84,9 +84,20 @@ struct Cut {
   PolygonMesh surface;
 };
 
+// The cut's parameters for the field-guided proxy: square growth, tightened.
+inline CutParams field_cut_params() {
+  CutParams params;
+  params.square_growth = true;
+  params.tighten = true;
+  return params;
+}
+
+// The defaults are `wearknit cut`'s: the field-guided proxy, its patch
+// grown as a square and its cut tightened (docs/cutting.md). With
+// ProxyMethod::Remesh the CLI turns both off (§4.2's random growth).
 struct CutStageParams {
   ProxyParams proxy;
-  CutParams cut;
+  CutParams cut = field_cut_params();
 };
 
 // The pictures of Fig. 5 (cut_pictures.hpp) that write_cut draws.

@@ -1,9 +1,9 @@
 // The quad-dominant proxy Q of the garment surface (§4.1).
 //
-// With ProxyMethod::Field a surface that is not quad-dominant becomes the
-// field-guided triangle proxy of field_proxy.hpp (the cut stage also
-// replaces a quad-dominant input that is not clean by it, cut_stage.hpp).
-// With ProxyMethod::Remesh, the default:
+// With ProxyMethod::Field, the default, a surface that is not quad-dominant
+// becomes the field-guided triangle proxy of field_proxy.hpp (the cut stage
+// also replaces a quad-dominant input that is not clean by it, cut_stage.hpp).
+// With ProxyMethod::Remesh:
 // a quad-dominant input (more than half of its faces are quads) is used as
 // it is. Any other input (a triangle mesh, as users have) is remeshed with
 // field-aligned extraction (remesh.hpp) at the target edge length, tried
@@ -33,7 +33,7 @@ const char* proxy_method_name(ProxyMethod method);
 std::optional<ProxyMethod> proxy_method(std::string_view name);
 
 struct ProxyParams {
-  ProxyMethod method = ProxyMethod::Remesh;
+  ProxyMethod method = ProxyMethod::Field;
   // Target edge length of a remeshed proxy, mm; 0 picks the length that
   // gives about `auto_faces` quads.
   double proxy_edge_mm = 0.0;

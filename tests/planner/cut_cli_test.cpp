@@ -19,7 +19,7 @@ TEST(CutCliTest, WritesTheCutFolder) {
   const auto dir = make_temp_dir("cut_cli");
   const auto result =
       run_wearknit("cut " + (shared / "meshes" / "sphere-qd.obj").string() + " --units cm -o " +
-                   (dir / "out").string() + " --seed 3 --picture-px 100");
+                   (dir / "out").string() + " --seed 3 --picture-px 100 --proxy remesh");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   for (const char* name : {"proxy.obj", "cut-mesh.obj", "cuts.json", "labels.json", "report.json",
                            "cuts-3d.png", "layout-2d.png"}) {
@@ -60,7 +60,7 @@ TEST(CutCliTest, TriangleInputIsRemeshedAtTheTargetEdgeLength) {
   const auto dir = make_temp_dir("cut_cli_tri");
   const auto result =
       run_wearknit("cut " + (shared / "meshes" / "half-torus.obj").string() + " -o " +
-                   (dir / "out").string() + " --proxy-edge-mm 0.2 --no-pictures -q");
+                   (dir / "out").string() + " --proxy-edge-mm 0.2 --no-pictures -q --proxy remesh");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(result.out, "");
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "cuts-3d.png"));
@@ -121,15 +121,19 @@ TEST(CutCliTest, VanishingOptionIsCheckedAndRecorded) {
   WEARKNIT_REQUIRE_SHARED(shared);
   const auto dir = make_temp_dir("cut_cli_vanishing");
   const std::string mesh = (shared / "meshes" / "torus-qd.obj").string();
+  // The vanishing rule labels a quad-dominant proxy kept as it is (--proxy
+  // remesh); the field proxy's corners come from its own flow.
   ASSERT_EQ(run_wearknit("cut " + mesh + " -o " + (dir / "optimal").string() +
-                         " --no-pictures --vanishing optimal")
+                         " --no-pictures --proxy remesh --vanishing optimal")
                 .exit_code,
             0);
-  ASSERT_EQ(
-      run_wearknit("cut " + mesh + " -o " + (dir / "acute").string() + " --no-pictures").exit_code,
-      0);
+  ASSERT_EQ(run_wearknit("cut " + mesh + " -o " + (dir / "acute").string() +
+                         " --no-pictures --proxy remesh")
+                .exit_code,
+            0);
   const auto result = run_wearknit("cut " + mesh + " -o " + (dir / "regular").string() +
-                                   " --no-pictures --vanishing regular --vanishing-slack 20");
+                                   " --no-pictures --proxy remesh --vanishing regular "
+                                   "--vanishing-slack 20");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const auto optimal = nlohmann::json::parse(read_file(dir / "optimal" / "report.json"));
   const auto acute = nlohmann::json::parse(read_file(dir / "acute" / "report.json"));
@@ -156,7 +160,7 @@ TEST(CutCliTest, ProxyGrowthAndArcTurnOptionsAreCheckedAndRecorded) {
   EXPECT_EQ(proxy.err, "wearknit cut: --proxy takes field or remesh, not 'quads'\n");
   const auto growth = run_wearknit("cut x.obj -o out --growth round");
   EXPECT_EQ(growth.exit_code, 2);
-  EXPECT_EQ(growth.err, "wearknit cut: --growth takes random or square, not 'round'\n");
+  EXPECT_EQ(growth.err, "wearknit cut: --growth takes auto, random or square, not 'round'\n");
   const auto tighten = run_wearknit("cut x.obj -o out --tighten yes");
   EXPECT_EQ(tighten.exit_code, 2);
   EXPECT_EQ(tighten.err, "wearknit cut: --tighten takes auto, on or off, not 'yes'\n");
@@ -167,15 +171,17 @@ TEST(CutCliTest, ProxyGrowthAndArcTurnOptionsAreCheckedAndRecorded) {
   WEARKNIT_REQUIRE_SHARED(shared);
   const auto dir = make_temp_dir("cut_cli_proxy");
   // torus-qd carries 136 singular vertices where the field has 8: with
-  // --proxy field it is not clean and is replaced; by default it is kept.
+  // the field proxy (the default) it is not clean and is replaced; with
+  // --proxy remesh it is kept.
   const std::string mesh = (shared / "meshes" / "torus-qd.obj").string();
   const auto field = run_wearknit("cut " + mesh + " -o " + (dir / "field").string() +
-                                  " --no-pictures --proxy field --growth square --arc-turn 90");
+                                  " --no-pictures --arc-turn 90");
   ASSERT_EQ(field.exit_code, 0) << field.err;
   EXPECT_NE(field.out.find("proxy remeshed: the input has "), std::string::npos) << field.out;
-  ASSERT_EQ(
-      run_wearknit("cut " + mesh + " -o " + (dir / "kept").string() + " --no-pictures").exit_code,
-      0);
+  ASSERT_EQ(run_wearknit("cut " + mesh + " -o " + (dir / "kept").string() +
+                         " --no-pictures --proxy remesh")
+                .exit_code,
+            0);
   const auto replaced = nlohmann::json::parse(read_file(dir / "field" / "report.json"));
   const auto kept = nlohmann::json::parse(read_file(dir / "kept" / "report.json"));
   EXPECT_EQ(replaced["proxy"]["method"], "field");
@@ -190,7 +196,8 @@ TEST(CutCliTest, ProxyGrowthAndArcTurnOptionsAreCheckedAndRecorded) {
   EXPECT_EQ(kept["proxy"]["method"], "input");
   EXPECT_EQ(kept["proxy"]["input_verdict"], "");
   EXPECT_EQ(kept["params"]["growth"], "random");
-  // --tighten auto: on with the field proxy, off with the default one. On
+  // --growth and --tighten auto: square and on with the field proxy, random
+  // and off with the remeshed one. On
   // torus-qd's field proxy (no singular vertex) the tightened cut is two
   // loops and what joins them, 3 arcs, and here a few more where it turns
   // by over 90° (--arc-turn 90); the grown cut of that proxy has 49 arcs.

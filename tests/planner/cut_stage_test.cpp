@@ -41,9 +41,10 @@ TEST(CutStageTest, ReportsTheFieldBesideTheProxysIrregularVertices) {
                                "2) at "),
             std::string::npos)
       << describe(cut);
-  EXPECT_NE(describe(cut).find(
-                "; Q: 8 irregular vertices (+1: 8), 8 singular, 0 adjacent +1/-1 pairs\ncut: "),
-            std::string::npos)
+  EXPECT_NE(
+      describe(cut).find(
+          "; Q: 8 irregular vertices (+1: 8), 8 singular, 0 adjacent +1/-1 pairs\nproxy kept: "),
+      std::string::npos)
       << describe(cut);
 }
 

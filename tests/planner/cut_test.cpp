@@ -244,7 +244,7 @@ TEST(CutTest, VerifyCatchesABrokenCut) {
 TEST(CutIoTest, FolderRoundTrips) {
   const CutMesh cut = cut_of(test_meshes::cube(4), 2);
   const auto dir = wearknit::test::make_temp_dir("cut_io");
-  Cut written{cut, {}, 0, {}};
+  Cut written{cut, {}, 0, {}, {}};
   written.report.input = "cube";
   // The girth per vertex of Q, with one no ray could measure.
   for (int v = 0; v < cut.proxy.num_vertices(); ++v) written.girth_mm.push_back(1.0 + 0.25 * v);
@@ -289,7 +289,7 @@ TEST(CutIoTest, MissingFolderIsADiagnostic) {
 TEST(CutIoTest, ArcOverANonEdgeIsADiagnostic) {
   const CutMesh cut = cut_of(test_meshes::torus(6, 4));
   const auto dir = wearknit::test::make_temp_dir("cut_io_bad");
-  ASSERT_EQ(write_cut(dir.string(), Cut{cut, {}, 0, {}}, {false, 600}), "");
+  ASSERT_EQ(write_cut(dir.string(), Cut{cut, {}, 0, {}, {}}, {false, 600}), "");
   std::string cuts = wearknit::test::read_file(dir / "cut.json");
   const auto pos = cuts.find("\"edges\": [");
   ASSERT_NE(pos, std::string::npos);
@@ -326,6 +326,7 @@ TEST(CutTest, EverySharedMeshBecomesOneDisc) {
                                           ? ""
                                           : knitout::format(sink.diagnostics()[0]));
     ProxyParams proxy_params;
+    proxy_params.method = ProxyMethod::Remesh;
     proxy_params.auto_faces = 300;
     proxy_params.field_iterations = 30;
     proxy_params.position_iterations = 30;

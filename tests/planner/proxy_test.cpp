@@ -145,6 +145,7 @@ TEST(ProxyTest, TriangleInputIsRemeshedIntoQuadDominantSurfaceOfSameTopology) {
   }
   tri.faces = faces;
   ProxyParams params;
+  params.method = ProxyMethod::Remesh;
   params.proxy_edge_mm = 0.8;
   params.field_iterations = 30;
   params.position_iterations = 30;
@@ -172,7 +173,9 @@ TEST(ProxyTest, AFailedExtractionIsTriedAgainAtNearbySpacings) {
   ASSERT_TRUE(mesh);
   const double scale = 100.0 / bounding_box_size(*mesh).maxCoeff() * 1.03;
   for (Vec3& p : mesh->positions) p *= scale;
-  const ProxyResult proxy = make_proxy(*mesh, {});
+  ProxyParams params;
+  params.method = ProxyMethod::Remesh;
+  const ProxyResult proxy = make_proxy(*mesh, params);
   EXPECT_EQ(proxy.method, "instant-meshes") << proxy.remesh_failure;
   EXPECT_GE(proxy.remesh_attempts, 1);
   const HalfedgeMesh he(proxy.mesh);

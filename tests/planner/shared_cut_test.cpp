@@ -45,7 +45,8 @@ TEST_P(SharedCutTest, CutsTheMeshIntoOneDiscForTheSuitesThatUseIt) {
 }
 
 // The field-guided proxy (docs/cutting.md, "The proxy Q") at 100 mm along
-// the longest side, grown as a square: on every closed mesh Q carries no
+// the longest side, grown as a square, its cut tightened (the defaults): on
+// every closed mesh Q carries no
 // more singular vertices than 1.2 times the smoothest field's (counted in
 // units of index: a pole of index +4 needs four +1 vertices) plus 4, and
 // at most a tenth of them sit in adjacent +1/-1 pairs. The cut's figures
@@ -59,9 +60,7 @@ TEST_P(SharedCutTest, TheFieldProxyCarriesNoMoreSingularitiesThanTheField) {
   const Vec3 size = bounding_box_size(*mesh);
   for (Vec3& p : mesh->positions) p *= 100.0 / size.maxCoeff();
   CutStageParams params;
-  params.proxy.method = ProxyMethod::Field;
-  params.cut.square_growth = true;
-  const Cut cut = cut_garment(*mesh, params);  // verify_cut runs inside
+  const Cut cut = cut_garment(*mesh, params);  // the defaults; verify_cut runs inside
   int field = 0;
   for (const auto& [index, count] : cut.report.field.singularities.by_index)
     field += std::abs(index) * count;
@@ -76,6 +75,14 @@ TEST_P(SharedCutTest, TheFieldProxyCarriesNoMoreSingularitiesThanTheField) {
   if (cut.report.field.boundary_loops != 0) return;  // the ratios are for closed surfaces
   EXPECT_LE(singular, 1.2 * field + 4) << file;
   EXPECT_LE(pairs, 0.1 * singular) << file;
+  // The tightened cut's arcs end at singular vertices, branch points and
+  // sharp turns: about one per singular vertex. Not on two meshes
+  // (docs/cutting.md, "Known limits"): 3torus-quad's Q is its own 23 faces,
+  // whose cut turns sharply twice; anchor's cut turns at the CAD part's edges.
+  const std::set<std::string> more_arcs = {"3torus-quad", "anchor"};
+  if (more_arcs.count(GetParam()) == 0) {
+    EXPECT_LE(arcs, 1.3 * singular + 4) << file;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, SharedCutTest, ::testing::ValuesIn(shared_cuts::mesh_names()),

@@ -51,9 +51,10 @@ inline std::string test_name(const ::testing::TestParamInfo<std::string>& info) 
 }
 
 // Cuts the shared mesh `name` as the suites take it: scaled to 100 mm along
-// its longest side, its quad proxy (§4.1) and its cut (§4) with the default
-// options; writes the cut folder `dir` as `wearknit cut --no-pictures`
-// does. Checks the proxy and the disc on the way (gtest failures).
+// its longest side and cut (§4) by the cut stage with the default options
+// (the field-guided proxy, square growth, the cut tightened); writes the
+// cut folder `dir` as `wearknit cut --no-pictures` does, with the garment's
+// surface. Checks the proxy and the disc on the way (gtest failures).
 inline void cut_into(const fs::path& shared, const std::string& name, const fs::path& dir) {
   const fs::path file = shared / "meshes" / (name + ".obj");
   knitout::DiagnosticSink sink;
@@ -61,36 +62,41 @@ inline void cut_into(const fs::path& shared, const std::string& name, const fs::
   ASSERT_TRUE(mesh) << file;
   const Vec3 size = bounding_box_size(*mesh);
   for (Vec3& p : mesh->positions) p *= 100.0 / size.maxCoeff();
-  const bool quad_input = is_quad_dominant(*mesh);
-  ProxyResult proxy = make_proxy(*mesh, ProxyParams{});
-  // Every triangle input is remeshed along its field (no fallback to
-  // pairing triangles).
-  EXPECT_EQ(proxy.method, quad_input ? "input" : "instant-meshes") << file << proxy.remesh_failure;
-  // No two proxy vertices at one point (a pinch split by the remesher is
-  // pulled apart): the wearability stage welds the cut mesh's two sides by
-  // position, which must give back this surface.
+  Cut cut = cut_garment(*mesh, CutStageParams{});  // verify_cut runs inside
+  // A quad-dominant input is kept only when clean; anything else becomes
+  // the field-guided proxy.
+  EXPECT_TRUE(cut.report.proxy_method == "input" || cut.report.proxy_method == "field")
+      << file << ": proxy " << cut.report.proxy_method;
+  // No two proxy vertices at one point (each would be a pinch of the
+  // garment the wearability stage rebuilds from the cut).
   {
-    std::vector<Vec3> points = proxy.mesh.positions;
-    std::vector<std::vector<int>> faces = proxy.mesh.faces;
+    std::vector<Vec3> points = cut.mesh.proxy.polygons().positions;
+    std::vector<std::vector<int>> faces = cut.mesh.proxy.polygons().faces;
+    const std::size_t before = points.size();
     weld_vertices(points, faces, 1e-9 * 100.0 * std::sqrt(3.0));
-    EXPECT_EQ(points.size(), proxy.mesh.positions.size()) << file << ": coincident proxy vertices";
+    EXPECT_EQ(points.size(), before) << file << ": coincident proxy vertices";
   }
-  // No quad of nil area is left where the lattice folded (each would put a
-  // needle-thin spike into the cut boundary).
-  if (!quad_input) {
-    PolygonMesh welded = proxy.mesh;
-    EXPECT_EQ(collapse_folded_quads(welded, RemeshParams{}.fold_ratio), 0)
-        << file << ": folded quads left in the proxy";
-  }
-  const CutMesh cut = cut_surface(HalfedgeMesh(std::move(proxy.mesh)), CutParams{});
-  EXPECT_TRUE(check_disc(labelled_disc(cut)).empty()) << file << ": the cut is not a disc";
+  EXPECT_TRUE(check_disc(labelled_disc(cut.mesh)).empty()) << file << ": the cut is not a disc";
   std::error_code ignored;
   fs::remove_all(dir, ignored);
-  // The garment's surface goes with it, as the cut stage writes it.
-  Cut written;
-  written.mesh = cut;
-  written.surface = std::move(*mesh);
-  ASSERT_EQ(write_cut(dir.string(), written, {false, 600}), "") << name;
+  ASSERT_EQ(write_cut(dir.string(), cut, {false, 600}), "") << name;
+}
+
+// The cut of the shared mesh `name` at 100 mm with §4.1's remeshed quad
+// proxy (`wearknit cut --proxy remesh`: random growth, the cut as grown),
+// with the garment's surface; made in memory, not read from a folder.
+inline std::optional<Cut> remeshed_cut(const fs::path& shared, const std::string& name) {
+  knitout::DiagnosticSink sink;
+  std::optional<PolygonMesh> mesh =
+      load_mesh((shared / "meshes" / (name + ".obj")).string(), {}, sink);
+  if (!mesh) return std::nullopt;
+  const Vec3 size = bounding_box_size(*mesh);
+  for (Vec3& p : mesh->positions) p *= 100.0 / size.maxCoeff();
+  CutStageParams params;
+  params.proxy.method = ProxyMethod::Remesh;
+  params.cut.square_growth = false;
+  params.cut.tighten = false;
+  return cut_garment(*mesh, params);
 }
 
 // The cut of the shared mesh `name`, read from its cut folder (the
