@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -179,17 +180,30 @@ bool wait_for(int seconds, Done done) {
   return done();
 }
 
-TEST(BatchSlurmClusterTest, ArrayRunsEveryRowThrottledAndThenTheCollectJob) {
-  TempDir root("wearknit-slurm");
-  Cluster cluster(root.path() / "cluster");
-  if (cluster.result().exit_code == 77 || !cluster.result().error.empty()) {
-    GTEST_SKIP() << "no single-node Slurm here: " << cluster.result().err << cluster.result().error;
+// A test on a cluster of its own, in a temporary folder: skipped, saying
+// why, where Slurm cannot start; SLURM_CONF points at it while the test runs.
+class BatchSlurmClusterTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    cluster_.emplace(root_.path() / "cluster");
+    const CommandOutput& started = cluster_->result();
+    if (started.exit_code == 77 || !started.error.empty()) {
+      GTEST_SKIP() << "no single-node Slurm here: " << started.err << started.error;
+    }
+    ASSERT_EQ(started.exit_code, 0) << started.err;
+    ASSERT_NE(cluster_->slurm_conf(), "") << started.out;
+    ::setenv("SLURM_CONF", cluster_->slurm_conf().c_str(), 1);
   }
-  ASSERT_EQ(cluster.result().exit_code, 0) << cluster.result().err;
-  ASSERT_NE(cluster.slurm_conf(), "") << cluster.result().out;
-  ::setenv("SLURM_CONF", cluster.slurm_conf().c_str(), 1);
+  void TearDown() override { ::unsetenv("SLURM_CONF"); }
+  const fs::path& root() const { return root_.path(); }
 
-  const SlurmOptions o = options_in(root.path());
+ private:
+  TempDir root_{"wearknit-slurm"};
+  std::optional<Cluster> cluster_;
+};
+
+TEST_F(BatchSlurmClusterTest, ArrayRunsEveryRowThrottledAndThenTheCollectJob) {
+  const SlurmOptions o = options_in(root());
   write_file(o.wearknit, kStandIn);
   fs::permissions(o.wearknit, fs::perms::owner_all, fs::perm_options::add);
   write_file(o.manifest, "name,garment,wearer\n");
@@ -252,7 +266,6 @@ TEST(BatchSlurmClusterTest, ArrayRunsEveryRowThrottledAndThenTheCollectJob) {
       << end;
   EXPECT_TRUE(contains(end, "collect job " + collect_id + ": COMPLETED\n")) << end;
   EXPECT_TRUE(contains(end, "rows: 3 ok, 1 failed, 0 unfinished, 0 not run\n")) << end;
-  ::unsetenv("SLURM_CONF");
 }
 
 // The real `wearknit batch --slurm` on the demo's shapes: the rows that run
@@ -260,26 +273,18 @@ TEST(BatchSlurmClusterTest, ArrayRunsEveryRowThrottledAndThenTheCollectJob) {
 // row with a missing input fails cleanly, the collect job writes the
 // summary; a task cancelled midway (scancel) is run again by the next batch,
 // which skips the rows done.
-TEST(BatchSlurmClusterTest, TheSameManifestThroughSlurmGivesTheSamePieces) {
-  TempDir root("wearknit-slurm-batch");
-  Cluster cluster(root.path() / "cluster");
-  if (cluster.result().exit_code == 77 || !cluster.result().error.empty()) {
-    GTEST_SKIP() << "no single-node Slurm here: " << cluster.result().err << cluster.result().error;
-  }
-  ASSERT_EQ(cluster.result().exit_code, 0) << cluster.result().err;
-  ::setenv("SLURM_CONF", cluster.slurm_conf().c_str(), 1);
-
+TEST_F(BatchSlurmClusterTest, TheSameManifestThroughSlurmGivesTheSamePieces) {
   // The demo's shapes, written by the demo itself.
-  const fs::path demo = root.path() / "demo";
+  const fs::path demo = root() / "demo";
   ASSERT_EQ(test::run_wearknit("demo -q -o '" + demo.string() + "'").exit_code, 0);
-  const fs::path manifest = root.path() / "m.csv";
+  const fs::path manifest = root() / "m.csv";
   write_file(manifest,
              "name,garment,wearer,size_mm,wear_trials,resolution,cloth_vertices\n"
              "small,demo/input/garment.obj,demo/input/wearer.obj,40,1,32,0\n"
              "large,demo/input/garment.obj,demo/input/wearer.obj,55,1,32,0\n"
              "missing,nothere.obj,demo/input/wearer.obj,40,1,32,0\n");
-  const fs::path local = root.path() / "local";
-  const fs::path remote = root.path() / "slurm";
+  const fs::path local = root() / "local";
+  const fs::path remote = root() / "slurm";
   EXPECT_EQ(test::run_wearknit("batch '" + manifest.string() + "' -o '" + local.string() +
                                "' --jobs 2 --threads 1 -q")
                 .exit_code,
@@ -327,7 +332,6 @@ TEST(BatchSlurmClusterTest, TheSameManifestThroughSlurmGivesTheSamePieces) {
     }
     EXPECT_GT(pieces, 0) << row;
   }
-  ::unsetenv("SLURM_CONF");
 }
 
 }  // namespace
