@@ -46,12 +46,16 @@ double page_scale(const Placement& pl) {
 }
 
 // A piece may be drawn smaller than on a page of its own, down to this
-// share of that scale, to share the page with the end of the closing order.
+// share of that scale, to share the page with the end of the closing order;
+// down to the second share where the guide would otherwise have more pages
+// than pieces.
 constexpr double kShrinkOnTablePage = 0.6;
+constexpr double kShrinkToSavePage = 0.4;
 
 // Pieces packed in shelves from `top` on page `first_page` on; returns the
 // placements and sets *pages to the number of pages after `first_page`.
-std::vector<Placement> place_pieces(const Model& m, int first_page, double top, int* pages) {
+std::vector<Placement> place_pieces(const Model& m, int first_page, double top, int* pages,
+                                    double shrink) {
   std::vector<Placement> out;
   const double right = kPageW - kMargin;
   const double bottom = kPageH - kMargin;
@@ -78,7 +82,7 @@ std::vector<Placement> place_pieces(const Model& m, int first_page, double top, 
     }
     if (y + height() > bottom && !any && page == first_page) {
       const double fits = std::min((bottom - y - kCaption) / pl.h_mm, (right - x) / pl.w_mm);
-      if (fits >= kShrinkOnTablePage * pl.scale) pl.scale = fits;
+      if (fits >= shrink * pl.scale) pl.scale = fits;
     }
     if (y + height() > bottom) {
       ++page;
@@ -174,7 +178,19 @@ PageLayout lay_out_pages(const Model& m, const std::string& title) {
       static_cast<double>(std::min<std::size_t>(on_last, static_cast<std::size_t>(per_column))) *
           kLine +
       6;
-  out.places = place_pieces(m, out.table_pages - 1, out.pieces_top, &out.piece_pages);
+  out.places =
+      place_pieces(m, out.table_pages - 1, out.pieces_top, &out.piece_pages, kShrinkOnTablePage);
+  // No more pages to read than pieces to lay out, where a smaller first
+  // piece on the table page makes that so.
+  if (out.pages() > static_cast<int>(m.layouts.size())) {
+    int pages = 0;
+    std::vector<Placement> smaller =
+        place_pieces(m, out.table_pages - 1, out.pieces_top, &pages, kShrinkToSavePage);
+    if (out.table_pages + pages < out.pages()) {
+      out.places = std::move(smaller);
+      out.piece_pages = pages;
+    }
+  }
   return out;
 }
 
