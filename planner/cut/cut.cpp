@@ -168,13 +168,7 @@ bool is_singular(const FieldLabels& labels, int v) {
 // vertex.
 std::vector<CutArc> find_arcs(const HalfedgeMesh& q, const FieldLabels& labels,
                               const std::vector<bool>& cut_edge, double turn_deg) {
-  std::vector<std::vector<int>> incident(at(q.num_vertices()));
-  for (int e = 0; e < q.num_edges(); ++e) {
-    if (!cut_edge[at(e)]) continue;
-    const int h = q.edge_halfedge(e);
-    incident[at(q.from(h))].push_back(e);
-    incident[at(q.to(h))].push_back(e);
-  }
+  const std::vector<std::vector<int>> incident = cut_edges_at(q, cut_edge);
   auto structural = [&](int w) {
     return incident[at(w)].size() != 2 || q.is_boundary_vertex(w) || is_singular(labels, w);
   };
@@ -686,6 +680,18 @@ CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params,
   build_disc(cut);
   cut.arcs = find_arcs(q, cut.labels, cut.cut_edge, params.arc_turn_deg);
   return cut;
+}
+
+std::vector<std::vector<int>> cut_edges_at(const HalfedgeMesh& q,
+                                           const std::vector<bool>& cut_edge) {
+  std::vector<std::vector<int>> incident(at(q.num_vertices()));
+  for (int e = 0; e < q.num_edges(); ++e) {
+    if (!cut_edge[at(e)]) continue;
+    const int h = q.edge_halfedge(e);
+    incident[at(q.from(h))].push_back(e);
+    incident[at(q.to(h))].push_back(e);
+  }
+  return incident;
 }
 
 int adjacent_opposite_pairs(const HalfedgeMesh& q, const FieldLabels& labels) {

@@ -120,6 +120,10 @@ struct CutMesh {
 CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params,
                     const std::vector<int>* vanishing_corner = nullptr);
 
+// Per vertex of q: the indices of the cut edges at it.
+std::vector<std::vector<int>> cut_edges_at(const HalfedgeMesh& q,
+                                           const std::vector<bool>& cut_edge);
+
 // Adjacent opposite pairs: interior vertices of index +1 and -1 one edge
 // apart, matched so that each vertex is in one pair at most (greedily, in
 // vertex order). They are the avoidable singularities of a proxy: the pair

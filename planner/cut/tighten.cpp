@@ -142,13 +142,7 @@ class Tightener {
   // The cut split at its nodes into paths (a loop through no node starts and
   // ends at its first vertex).
   std::vector<Path> node_paths() const {
-    std::vector<std::vector<int>> incident(at(q_.num_vertices()));
-    for (int e = 0; e < q_.num_edges(); ++e) {
-      if (!cut_edge_[at(e)]) continue;
-      const int h = q_.edge_halfedge(e);
-      incident[at(q_.from(h))].push_back(e);
-      incident[at(q_.to(h))].push_back(e);
-    }
+    const std::vector<std::vector<int>> incident = cut_edges_at(q_, cut_edge_);
     std::vector<bool> used(at(q_.num_edges()), false);
     std::vector<Path> paths;
     auto walk = [&](int start, int first_edge) {
