@@ -156,10 +156,6 @@ int edges_along(const HalfedgeMesh& q, const std::vector<std::vector<int>>& inci
   return v;
 }
 
-bool is_singular(const FieldLabels& labels, int v) {
-  return labels.corner_count[at(v)] % 4 != 0;
-}
-
 // Cut-arcs: maximal paths of cut edges through interior vertices that are not
 // singular, where exactly two cut edges meet and the cut turns by at most
 // `turn_deg`. The turn is measured between the chords two edges back and two
@@ -174,29 +170,8 @@ std::vector<CutArc> find_arcs(const HalfedgeMesh& q, const FieldLabels& labels,
   };
   // Per cut edge: the number of edges of the path between structural nodes it lies on.
   std::vector<int> path_edges(at(q.num_edges()), 0);
-  {
-    std::vector<bool> seen(at(q.num_edges()), false);
-    auto walk = [&](int start, int first) {
-      std::vector<int> edges;
-      int w = start;
-      int e = first;
-      while (!seen[at(e)]) {
-        seen[at(e)] = true;
-        edges.push_back(e);
-        w = q.to(out_along(q, w, e));
-        if (w == start || structural(w)) break;
-        const auto& list = incident[at(w)];
-        e = list[0] == e ? list[1] : list[0];
-      }
-      for (int edge : edges) path_edges[at(edge)] = static_cast<int>(edges.size());
-    };
-    for (int v = 0; v < q.num_vertices(); ++v) {
-      if (incident[at(v)].empty() || !structural(v)) continue;
-      for (int e : incident[at(v)]) walk(v, e);
-    }
-    for (int e = 0; e < q.num_edges(); ++e) {
-      if (cut_edge[at(e)] && !seen[at(e)]) walk(q.from(q.edge_halfedge(e)), e);
-    }
+  for (const CutPath& path : split_cut(q, cut_edge, incident, structural)) {
+    for (int e : path.edges) path_edges[at(e)] = static_cast<int>(path.edges.size());
   }
   const double max_turn = turn_deg * std::numbers::pi / 180.0;
   auto passes_through = [&](int w) {
@@ -212,36 +187,13 @@ std::vector<CutArc> find_arcs(const HalfedgeMesh& q, const FieldLabels& labels,
   for (int v = 0; v < q.num_vertices(); ++v) {
     node[at(v)] = !incident[at(v)].empty() && !passes_through(v);
   }
-  std::vector<bool> used(at(q.num_edges()), false);
   std::vector<CutArc> arcs;
-  auto walk = [&](int start, int first_edge) {
+  for (CutPath& path : split_cut(q, cut_edge, incident, [&](int v) { return node[at(v)]; })) {
     CutArc arc;
-    arc.vertices.push_back(start);
-    int w = start;
-    int e = first_edge;
-    while (true) {
-      used[at(e)] = true;
-      const int h = out_along(q, w, e);
-      arc.length_mm += q.edge_length(h);
-      w = q.to(h);
-      arc.vertices.push_back(w);
-      if (node[at(w)] || w == start) break;
-      const auto& list = incident[at(w)];
-      const int next = list[0] == e ? list[1] : list[0];
-      if (used[at(next)]) break;
-      e = next;
-    }
+    for (int e : path.edges) arc.length_mm += q.edge_length(q.edge_halfedge(e));
+    arc.vertices = std::move(path.vertices);
     arc.closed = arc.vertices.back() == arc.vertices.front();
     arcs.push_back(std::move(arc));
-  };
-  for (int v = 0; v < q.num_vertices(); ++v) {
-    if (!node[at(v)]) continue;
-    for (int e : incident[at(v)]) {
-      if (!used[at(e)]) walk(v, e);
-    }
-  }
-  for (int e = 0; e < q.num_edges(); ++e) {  // loops through regular vertices only
-    if (cut_edge[at(e)] && !used[at(e)]) walk(q.from(q.edge_halfedge(e)), e);
   }
   return arcs;
 }
@@ -402,6 +354,13 @@ int seed_frame(const HalfedgeMesh& q, const FieldLabels& labels, int seed_face) 
   return ((1 - halfedge_direction(q, labels, 0, best_h)) % 4 + 4) % 4;
 }
 
+// The frame of the face of half-edge t, reached across the edge whose other
+// half-edge has direction `direction`: the one that makes t's direction
+// opposite to it.
+int frame_across(const HalfedgeMesh& q, const FieldLabels& labels, int direction, int t) {
+  return ((direction + 2 - halfedge_direction(q, labels, 0, t)) % 4 + 4) % 4;
+}
+
 // §4.1–4.2 patch growing. The patch starts as one face and grows over the
 // half-edge of its boundary B with the lowest cuttability score
 // c_s * (motorcycle crossings) + c_o * (overlap score), equal scores in the
@@ -535,8 +494,7 @@ class PatchGrower {
     const int t = q_.twin(h);
     const int g = q_.face(t);
     const int f = q_.face(h);
-    const int frame =
-        ((cut_.direction[at(h)] + 2 - halfedge_direction(q_, labels_, 0, t)) % 4 + 4) % 4;
+    const int frame = frame_across(q_, labels_, cut_.direction[at(h)], t);
     place(g, frame, cell_across(h), overlap_score_[at(f)] + count_across(h));
     ++placed_;
     const int before = prev_b_[at(h)];
@@ -629,8 +587,7 @@ void lay_out(CutMesh& cut) {
       const int h = q.face_start(f) + i;
       const int t = q.twin(h);
       if (t < 0 || cut.cut_edge[at(q.edge(h))] || reached[at(q.face(t))]) continue;
-      const int frame =
-          ((cut.direction[at(h)] + 2 - halfedge_direction(q, cut.labels, 0, t)) % 4 + 4) % 4;
+      const int frame = frame_across(q, cut.labels, cut.direction[at(h)], t);
       const auto& step = kStep[at(cut.direction[at(h)])];
       place(q.face(t), frame, {cut.face_uv[at(f)][0] + step[0], cut.face_uv[at(f)][1] + step[1]});
       queue.push_back(q.face(t));
@@ -692,6 +649,44 @@ std::vector<std::vector<int>> cut_edges_at(const HalfedgeMesh& q,
     incident[at(q.to(h))].push_back(e);
   }
   return incident;
+}
+
+bool is_singular(const FieldLabels& labels, int v) {
+  return labels.corner_count[at(v)] % 4 != 0;
+}
+
+std::vector<CutPath> split_cut(const HalfedgeMesh& q, const std::vector<bool>& cut_edge,
+                               const std::vector<std::vector<int>>& incident,
+                               const std::function<bool(int)>& node) {
+  std::vector<bool> used(at(q.num_edges()), false);
+  std::vector<CutPath> paths;
+  auto walk = [&](int start, int first_edge) {
+    CutPath path{{start}, {}};
+    int w = start;
+    int e = first_edge;
+    while (true) {
+      used[at(e)] = true;
+      path.edges.push_back(e);
+      w = q.to(out_along(q, w, e));
+      path.vertices.push_back(w);
+      if (w == start || node(w)) break;
+      const auto& list = incident[at(w)];
+      const int next = list[0] == e ? list[1] : list[0];
+      if (used[at(next)]) break;
+      e = next;
+    }
+    paths.push_back(std::move(path));
+  };
+  for (int v = 0; v < q.num_vertices(); ++v) {
+    if (incident[at(v)].empty() || !node(v)) continue;
+    for (int e : incident[at(v)]) {
+      if (!used[at(e)]) walk(v, e);
+    }
+  }
+  for (int e = 0; e < q.num_edges(); ++e) {  // loops through no node
+    if (cut_edge[at(e)] && !used[at(e)]) walk(q.from(q.edge_halfedge(e)), e);
+  }
+  return paths;
 }
 
 int adjacent_opposite_pairs(const HalfedgeMesh& q, const FieldLabels& labels) {

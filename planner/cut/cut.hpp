@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -123,6 +124,23 @@ CutMesh cut_surface(HalfedgeMesh proxy, const CutParams& params,
 // Per vertex of q: the indices of the cut edges at it.
 std::vector<std::vector<int>> cut_edges_at(const HalfedgeMesh& q,
                                            const std::vector<bool>& cut_edge);
+
+// No consistent labelling exists around a vertex whose corner count is not
+// a multiple of 4 (§4.2): interior, it must be on the cut.
+bool is_singular(const FieldLabels& labels, int v);
+
+// A stretch of the cut: Q's vertices it runs along and its edges.
+struct CutPath {
+  std::vector<int> vertices;
+  std::vector<int> edges;
+};
+// The cut split into paths at the vertices where `node` holds, found from
+// the nodes in vertex order, then the loops through no node in edge order
+// (such a loop starts and ends at its first vertex). `incident` is
+// cut_edges_at(q, cut_edge).
+std::vector<CutPath> split_cut(const HalfedgeMesh& q, const std::vector<bool>& cut_edge,
+                               const std::vector<std::vector<int>>& incident,
+                               const std::function<bool(int)>& node);
 
 // Adjacent opposite pairs: interior vertices of index +1 and -1 one edge
 // apart, matched so that each vertex is in one pair at most (greedily, in

@@ -117,8 +117,7 @@ class Tightener {
   }
 
  private:
-  // No consistent labelling exists around a singular vertex (§4.2).
-  bool singular(int v) const { return labels_.corner_count[at(v)] % 4 != 0; }
+  bool singular(int v) const { return is_singular(labels_, v); }
   // A vertex the cut must keep: on the mesh boundary, singular, or where
   // other than two cut edges meet.
   bool node(int v) const { return q_.is_boundary_vertex(v) || singular(v) || degree_[at(v)] != 2; }
@@ -134,43 +133,15 @@ class Tightener {
     degree_[at(q_.to(h))] += step;
   }
 
-  int other_end(int e, int v) const {
-    const int h = q_.edge_halfedge(e);
-    return q_.from(h) == v ? q_.to(h) : q_.from(h);
-  }
-
   // The cut split at its nodes into paths (a loop through no node starts and
   // ends at its first vertex).
   std::vector<Path> node_paths() const {
-    const std::vector<std::vector<int>> incident = cut_edges_at(q_, cut_edge_);
-    std::vector<bool> used(at(q_.num_edges()), false);
     std::vector<Path> paths;
-    auto walk = [&](int start, int first_edge) {
-      Path path{{start}, {}, 0.0};
-      int w = start;
-      int e = first_edge;
-      while (true) {
-        used[at(e)] = true;
-        path.edges.push_back(e);
-        path.cost += cost_[at(e)];
-        w = other_end(e, w);
-        path.vertices.push_back(w);
-        if (w == start || node(w)) break;
-        const auto& list = incident[at(w)];
-        const int next = list[0] == e ? list[1] : list[0];
-        if (used[at(next)]) break;
-        e = next;
-      }
+    for (CutPath& stretch :
+         split_cut(q_, cut_edge_, cut_edges_at(q_, cut_edge_), [&](int v) { return node(v); })) {
+      Path path{std::move(stretch.vertices), std::move(stretch.edges), 0.0};
+      for (int e : path.edges) path.cost += cost_[at(e)];
       paths.push_back(std::move(path));
-    };
-    for (int v = 0; v < q_.num_vertices(); ++v) {
-      if (incident[at(v)].empty() || !node(v)) continue;
-      for (int e : incident[at(v)]) {
-        if (!used[at(e)]) walk(v, e);
-      }
-    }
-    for (int e = 0; e < q_.num_edges(); ++e) {
-      if (cut_edge_[at(e)] && !used[at(e)]) walk(q_.from(q_.edge_halfedge(e)), e);
     }
     return paths;
   }
