@@ -7,7 +7,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <numbers>
+#include <queue>
 #include <stdexcept>
 #include <unordered_map>
 #include <vector>
@@ -29,6 +31,63 @@ std::array<Vec3, 3> hat_gradients(const LabelledDisc& disc, const Triangle& t) {
   }
   return g;
 }
+
+// The least-squares fit of t to a target gradient per triangle: the
+// cotangent Laplacian of the triangles (a tiny mass term fixes the
+// constant), factorised once, so each fit is one solve.
+class GradientFit {
+ public:
+  GradientFit(const LabelledDisc& disc, const std::vector<Triangle>& tris)
+      : tris_(tris), n_(static_cast<int>(disc.positions.size())), grads_(tris.size()) {
+    std::vector<Eigen::Triplet<double>> entries;
+    double diagonal = 0;
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+      grads_[k] = hat_gradients(disc, tris[k]);
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          const double value = tris[k].area * grads_[k][at(i)].dot(grads_[k][at(j)]);
+          entries.emplace_back(tris[k].v[at(i)], tris[k].v[at(j)], value);
+          if (i == j) diagonal += value;
+        }
+      }
+    }
+    const double epsilon = 1e-9 * diagonal / std::max(1, n_);
+    for (int i = 0; i < n_; ++i) entries.emplace_back(i, i, epsilon);
+    Eigen::SparseMatrix<double> matrix(n_, n_);
+    matrix.setFromTriplets(entries.begin(), entries.end());
+    solver_.compute(matrix);
+    if (solver_.info() != Eigen::Success) {
+      throw std::runtime_error("row time: the Laplacian could not be factorised");
+    }
+  }
+
+  // The hat gradients of triangle k.
+  const std::array<Vec3, 3>& grads(std::size_t k) const { return grads_[k]; }
+
+  // t whose gradient is closest to `target` (per triangle) in least squares.
+  Eigen::VectorXd solve(const std::vector<Vec3>& target) const {
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n_);
+    for (std::size_t k = 0; k < tris_.size(); ++k) {
+      for (int i = 0; i < 3; ++i) {
+        rhs[tris_[k].v[at(i)]] += tris_[k].area * grads_[k][at(i)].dot(target[k]);
+      }
+    }
+    return solver_.solve(rhs);
+  }
+
+  // The gradient of t on triangle k.
+  Vec3 gradient(std::size_t k, const Eigen::VectorXd& t) const {
+    Vec3 g = Vec3::Zero();
+    for (int i = 0; i < 3; ++i) g += t[tris_[k].v[at(i)]] * grads_[k][at(i)];
+    return g;
+  }
+
+ private:
+  const std::vector<Triangle>& tris_;
+  int n_;
+  std::vector<std::array<Vec3, 3>> grads_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
+};
 
 // The wale direction of a triangular face is its labels' at best within
 // about 30 degrees: its sides lie at 60 degrees to each other, and the
@@ -140,41 +199,13 @@ std::vector<Triangle> triangulate(const LabelledDisc& disc) {
 
 Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
                          const StitchMeshParams& params, StitchMeshStats& stats) {
-  const int n = static_cast<int>(disc.positions.size());
-  std::vector<Eigen::Triplet<double>> entries;
-  std::vector<std::array<Vec3, 3>> grads(tris.size());
-  double diagonal = 0;
-  for (std::size_t k = 0; k < tris.size(); ++k) {
-    grads[k] = hat_gradients(disc, tris[k]);
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        const double value = tris[k].area * grads[k][at(i)].dot(grads[k][at(j)]);
-        entries.emplace_back(tris[k].v[at(i)], tris[k].v[at(j)], value);
-        if (i == j) diagonal += value;
-      }
-    }
-  }
-  // A tiny mass term fixes the constant; t is shifted to start at 0 later.
-  const double epsilon = 1e-9 * diagonal / std::max(1, n);
-  for (int i = 0; i < n; ++i) entries.emplace_back(i, i, epsilon);
-  Eigen::SparseMatrix<double> matrix(n, n);
-  matrix.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(matrix);
-  if (solver.info() != Eigen::Success) {
-    throw std::runtime_error("row time: the Laplacian could not be factorised");
-  }
+  const GradientFit fit(disc, tris);
   std::vector<Vec3> target(tris.size());
   for (std::size_t k = 0; k < tris.size(); ++k) target[k] = tris[k].wale / params.wale_mm;
-  Eigen::VectorXd t = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd t = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(disc.positions.size()));
   for (int iteration = 0; iteration <= params.straighten_iterations; ++iteration) {
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-    for (std::size_t k = 0; k < tris.size(); ++k) {
-      for (int i = 0; i < 3; ++i) {
-        rhs[tris[k].v[at(i)]] += tris[k].area * grads[k][at(i)].dot(target[k]);
-      }
-    }
     const Eigen::VectorXd before = t;
-    t = solver.solve(rhs);
+    t = fit.solve(target);
     stats.straighten_fits = iteration;
     // t is in rows. The fixed point of the straightening (rows of unit
     // height blended with the labels) is reached when no vertex moves by
@@ -183,8 +214,7 @@ Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
     const bool settled =
         iteration > 0 && (moved - moved.mean()).abs().maxCoeff() < params.straighten_tolerance_rows;
     for (std::size_t k = 0; k < tris.size(); ++k) {
-      Vec3 g = Vec3::Zero();
-      for (int i = 0; i < 3; ++i) g += t[tris[k].v[at(i)]] * grads[k][at(i)];
+      const Vec3 g = fit.gradient(k, t);
       tris[k].grad = g;
       // Keep the labelled direction and the fitted one in equal parts, at
       // unit speed: rows follow the labels and keep their height.
@@ -205,6 +235,105 @@ Eigen::VectorXd row_time(const LabelledDisc& disc, std::vector<Triangle>& tris,
   stats.label_deviation_deg = area > 0 ? angle_area / area * 180.0 / std::numbers::pi : 0.0;
   t.array() -= t.minCoeff();
   return t;
+}
+
+int drain_interior_extrema(const LabelledDisc& disc, std::vector<Triangle>& tris,
+                           Eigen::VectorXd& t, const StitchMeshParams& params, int rounds) {
+  const int n = static_cast<int>(disc.positions.size());
+  const GradientFit fit(disc, tris);
+  // The targets of the settled fit: unit speed, blended with the labels.
+  std::vector<Vec3> target(tris.size());
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    Vec3 d = params.label_weight * tris[k].wale;
+    if (tris[k].grad.norm() > 1e-12) d += tris[k].grad.normalized();
+    target[k] = d.norm() > 1e-12 ? Vec3(d.normalized() / params.wale_mm) : Vec3::Zero();
+  }
+  const std::vector<std::vector<int>> adjacent = vertex_neighbours(tris, at(n));
+  std::vector<std::vector<int>> tris_of(at(n));
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    for (int v : tris[k].v) tris_of[at(v)].push_back(static_cast<int>(k));
+  }
+  int drained = 0;
+  for (int round = 0; round < rounds; ++round) {
+    Eigen::VectorXd levelled = t;
+    if (level_interior_extrema(disc, tris, levelled) == 0) return drained;
+    std::vector<int> region(at(n), -1);  // per vertex: its extremum's region
+    int regions = 0;
+    for (int v = 0; v < n; ++v) {
+      if (levelled[v] == t[v] || region[at(v)] >= 0) continue;
+      // One pit (raised) or peak (cut), its vertices joined by edges.
+      const double sign = levelled[v] > t[v] ? 1.0 : -1.0;
+      std::vector<int> members{v};
+      region[at(v)] = regions;
+      for (std::size_t i = 0; i < members.size(); ++i) {
+        for (int w : adjacent[at(members[i])]) {
+          if (region[at(w)] < 0 && levelled[w] != t[w] && (levelled[w] > t[w]) == (sign > 0)) {
+            region[at(w)] = regions;
+            members.push_back(w);
+          }
+        }
+      }
+      ++regions;
+      drained += static_cast<int>(members.size());
+      // Where it spills: the neighbour outside lowest (pit) or highest (peak).
+      int spill = -1;
+      for (int m : members) {
+        for (int w : adjacent[at(m)]) {
+          if (region[at(w)] >= 0) continue;
+          if (spill < 0 || sign * (t[w] - t[spill]) < 0) spill = w;
+        }
+      }
+      if (spill < 0) continue;
+      // Distances from the spill point over the region and its rim.
+      std::unordered_map<int, double> dist;
+      using Entry = std::pair<double, int>;
+      std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+      dist[spill] = 0;
+      queue.push({0.0, spill});
+      auto inside = [&](int w) {
+        if (region[at(w)] == regions - 1) return true;
+        for (int x : adjacent[at(w)]) {
+          if (region[at(x)] == regions - 1) return true;
+        }
+        return false;
+      };
+      while (!queue.empty()) {
+        const auto [d, u] = queue.top();
+        queue.pop();
+        if (d > dist[u]) continue;
+        for (int w : adjacent[at(u)]) {
+          if (!inside(w)) continue;
+          const double next = d + (disc.positions[at(w)] - disc.positions[at(u)]).norm();
+          const auto it = dist.find(w);
+          if (it == dist.end() || next < it->second) {
+            dist[w] = next;
+            queue.push({next, w});
+          }
+        }
+      }
+      // The region's triangles rise away from the spill point (a pit) or
+      // fall away from it (a peak): it drains through its spill point.
+      for (int m : members) {
+        for (int k : tris_of[at(m)]) {
+          Vec3 g = Vec3::Zero();
+          bool all = true;
+          for (int i = 0; i < 3; ++i) {
+            const auto it = dist.find(tris[at(k)].v[at(i)]);
+            if (it == dist.end()) {
+              all = false;
+              break;
+            }
+            g += it->second * fit.grads(at(k))[at(i)];
+          }
+          if (all && g.norm() > 1e-12) target[at(k)] = sign * g.normalized() / params.wale_mm;
+        }
+      }
+    }
+    t = fit.solve(target);
+    t.array() -= t.minCoeff();
+    for (std::size_t k = 0; k < tris.size(); ++k) tris[k].grad = fit.gradient(k, t);
+  }
+  return drained;
 }
 
 Eigen::VectorXd row_levels(const LabelledDisc& disc, const std::vector<Triangle>& tris,

@@ -149,6 +149,7 @@ nlohmann::json report_json(const StitchMeshReport& report) {
           {"label_deviation_deg", report.stats.label_deviation_deg},
           {"knit_direction", direction_json(report)},
           {"row_time_levelled", report.stats.row_time_levelled},
+          {"row_time_drained", report.stats.row_time_drained},
           {"tip_sides", report.stats.tip_sides},
           {"relax_sweeps", report.stats.relax_sweeps},
           {"relax_seconds", report.stats.relax_seconds},

@@ -236,9 +236,15 @@ void mesh_disc(const LabelledDisc& disc, const StitchMeshParams& params, StitchM
   Eigen::VectorXd t = row_time(disc, tris, params, result.stats);
   result.stats.solve_seconds = seconds_since(start);
   // Rows, slices and strips from t. A strip with a hole (an interior
-  // extremum of t) makes the row time be levelled and the rows be placed
-  // again; a row time without one is used as fitted.
+  // extremum of t) makes the row time be drained, and what is left of the
+  // extrema levelled, and the rows be placed again; a row time without
+  // one is used as fitted.
   Rows rows = make_rows(disc, tris, t, params, {}, result.stats);
+  if (rows.strips.has_hole() && params.drain_fits > 0) {
+    result.stats.row_time_drained =
+        drain_interior_extrema(disc, tris, t, params, params.drain_fits);
+    rows = make_rows(disc, tris, t, params, {}, result.stats);
+  }
   if (rows.strips.has_hole()) {
     result.stats.row_time_levelled = level_interior_extrema(disc, tris, t);
     rows = make_rows(disc, tris, t, params, {}, result.stats);

@@ -132,6 +132,16 @@ std::vector<bool> on_disc_boundary(const LabelledDisc& disc);
 int level_interior_extrema(const LabelledDisc& disc, const std::vector<Triangle>& tris,
                            Eigen::VectorXd& t);
 
+// Interior extrema drained (step 2, docs/stitch-mesh.md "Interior
+// extrema"): levelling a pit or peak leaves a flat region inside one band,
+// a row many wales tall there. Instead each region level_interior_extrema
+// would flatten is given targets that rise away from the point where it
+// spills (a pit) or fall away from it (a peak), and t is fitted again, as a
+// whole, up to `rounds` times while extrema remain. Returns how many
+// vertices were in drained regions; t may still have extrema afterwards.
+int drain_interior_extrema(const LabelledDisc& disc, std::vector<Triangle>& tris,
+                           Eigen::VectorXd& t, const StitchMeshParams& params, int rounds);
+
 // Saddles on a level (step 2, docs/stitch-mesh.md "Saddles on a level").
 // Near a saddle of t the level curves form an X. A saddle inside a band
 // makes a strip with two bottom and two top chains, which split_folds can

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <iostream>
 #include <map>
 #include <set>
 #include <string>
@@ -406,16 +407,35 @@ LabelledDisc square_with_radial_centre(double side_mm, double radius_mm, int n) 
   return disc;
 }
 
-TEST(StitchMeshRemeshTest, RowTimeWithAnInteriorPitIsLevelled) {
+// The pit levelled (drain_fits 0) is a flat region inside one band, a row
+// many wales tall there; drained, rows cross it at their height.
+TEST(StitchMeshRemeshTest, RowTimeWithAnInteriorPitIsDrainedOrLevelled) {
   const LabelledDisc disc = square_with_radial_centre(60, 15, 30);
-  const StitchMeshResult result = make_stitch_mesh(disc, default_params());
-  EXPECT_GT(result.stats.row_time_levelled, 0);
-  for (const std::string& p : result.problems) ADD_FAILURE() << p;
-  EXPECT_TRUE(check(result.mesh).empty());
-  const StitchMeshFigures f = measure(result.mesh);
-  EXPECT_EQ(f.boundary_loops, 1);
-  EXPECT_EQ(f.euler_characteristic, 1);
-  EXPECT_LT(sd::farthest_boundary_vertex(disc, result.mesh), 1e-6 * 60);
+  StitchMeshParams levelling = default_params();
+  levelling.drain_fits = 0;
+  const StitchMeshResult drained = make_stitch_mesh(disc, default_params());
+  const StitchMeshResult levelled = make_stitch_mesh(disc, levelling);
+  EXPECT_GT(drained.stats.row_time_drained, 0);
+  EXPECT_EQ(drained.stats.row_time_levelled, 0);
+  EXPECT_EQ(levelled.stats.row_time_drained, 0);
+  EXPECT_GT(levelled.stats.row_time_levelled, 0);
+  for (const StitchMeshResult* result : {&drained, &levelled}) {
+    for (const std::string& p : result->problems) ADD_FAILURE() << p;
+    EXPECT_TRUE(check(result->mesh).empty());
+    const StitchMeshFigures f = measure(result->mesh);
+    EXPECT_EQ(f.boundary_loops, 1);
+    EXPECT_EQ(f.euler_characteristic, 1);
+    EXPECT_LT(sd::farthest_boundary_vertex(disc, result->mesh), 1e-6 * 60);
+  }
+  const StitchMeshFigures d = measure(drained.mesh);
+  const StitchMeshFigures l = measure(levelled.mesh);
+  std::cout << "wale sides: drained mean " << d.wale.mean_mm << " mm, longest " << d.wale.max_mm
+            << " mm, within 15% " << d.wale.within_15_percent << "; levelled mean "
+            << l.wale.mean_mm << " mm, longest " << l.wale.max_mm << " mm, within 15% "
+            << l.wale.within_15_percent << "\n";
+  EXPECT_LT(d.wale.max_mm, 0.75 * l.wale.max_mm);
+  EXPECT_LT(std::abs(d.wale.mean_mm / default_params().wale_mm - 1.0),
+            std::abs(l.wale.mean_mm / default_params().wale_mm - 1.0));
 }
 
 // Its twin: the same square with +y everywhere has no pit, and the row
