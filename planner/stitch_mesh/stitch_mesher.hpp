@@ -94,10 +94,9 @@ struct StitchMeshParams {
   double saddle_wales = 5.0;
   // Step 2: fits of the row time that drain its interior extrema (each
   // pit or peak sloped towards the point where it spills, and t fitted
-  // again) before any left is levelled; 0 levels them at once. One fit
-  // drains every extremum of the shared meshes but anchor's; four drain
-  // anchor's too but give it taller rows (wale mean 1.34 of the target
-  // against 1.27 after one).
+  // again) before any left is levelled; 0 levels them at once. More fits
+  // drain more but can leave taller rows (docs/stitch-mesh.md, "Interior
+  // extrema").
   int drain_fits = 1;
   // Step 5: at most this many sweeps moving the inner stitch vertices over
   // the surface so the sides come closer to their target lengths (0: as

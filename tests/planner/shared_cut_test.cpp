@@ -76,10 +76,10 @@ TEST_P(SharedCutTest, TheFieldProxyCarriesNoMoreSingularitiesThanTheField) {
   EXPECT_LE(singular, 1.2 * field + 4) << file;
   EXPECT_LE(pairs, 0.1 * singular) << file;
   // The tightened cut's arcs end at singular vertices, branch points and
-  // sharp turns: about one per singular vertex. Not on two meshes
-  // (docs/cutting.md, "Known limits"): 3torus-quad's Q is its own 23 faces,
-  // whose cut turns sharply twice; anchor's cut turns at the CAD part's edges.
-  const std::set<std::string> more_arcs = {"3torus-quad", "anchor"};
+  // sharp turns: about one per singular vertex. Not on 3torus-quad
+  // (docs/cutting.md, "Known limits"), whose Q is its own 23 faces and whose
+  // cut turns sharply twice.
+  const std::set<std::string> more_arcs = {"3torus-quad"};
   if (more_arcs.count(GetParam()) == 0) {
     EXPECT_LE(arcs, 1.3 * singular + 4) << file;
   }
