@@ -7,9 +7,11 @@
 // that passed a test) and on MORE configurations with one laced arc closed as
 // well. Every trial runs twice on the same directions, with the stall stop and
 // without it, so the successes the stop costs are counted on the same
-// trajectories. The elimination's tests run K = 4 trials: a per-trial success
-// rate p gives a test that passes with probability 1 - (1 - p)^4.
-//   strip_rate DIR WEARER.obj [TRIALS [MORE [THREADS]]]   (defaults 24, 4, 2)
+// trajectories; STALL sets the stop's switches without progress (the
+// elimination's 2 by default), to weigh another setting. The elimination's tests run K = 4
+// trials: a per-trial success rate p gives a test that passes with
+// probability 1 - (1 - p)^4.
+//   strip_rate DIR WEARER.obj [TRIALS [MORE [THREADS [STALL]]]]   (defaults 24, 4, 2, 2)
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -44,13 +46,15 @@ struct Tally {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::cerr << "usage: strip_rate DIR WEARER.obj [TRIALS [MORE [THREADS]]]\n";
+    std::cerr << "usage: strip_rate DIR WEARER.obj [TRIALS [MORE [THREADS [STALL]]]]\n";
     return 2;
   }
   const std::string dir = argv[1];
   const int trials = argc > 3 ? std::max(1, std::atoi(argv[3])) : 24;
   const int more = argc > 4 ? std::max(0, std::atoi(argv[4])) : 4;
   const int threads = argc > 5 ? std::max(1, std::atoi(argv[5])) : 2;
+  const int stall =
+      argc > 6 ? std::max(1, std::atoi(argv[6])) : planner::elimination_cloth().stall_switches;
 
   knitout::DiagnosticSink sink;
   // As the stage reads it by default (--cloth-vertices 500): a coarse garment
@@ -101,7 +105,7 @@ int main(int argc, char** argv) {
   auto work = [&] {
     for (std::size_t j = next++; j < jobs.size(); j = next++) {
       cloth::ClothParams p = params;
-      if (!jobs[j].stall_stop) p.stall_switches = 0;
+      p.stall_switches = jobs[j].stall_stop ? stall : 0;
       cloth::ClothSimulation sim(meshes[jobs[j].config], field, p);
       std::seed_seq seq{jobs[j].config, jobs[j].trial};
       std::mt19937_64 random(seq);
@@ -112,8 +116,10 @@ int main(int argc, char** argv) {
   for (int w = 0; w < threads; ++w) pool.emplace_back(work);
   for (auto& thread : pool) thread.join();
 
-  std::printf("%s: %zu arcs, %zu laced; %d trials per configuration, at most %d steps\n",
-              dir.c_str(), cover.arcs.size(), laced.size(), trials, params.max_steps);
+  std::printf(
+      "%s: %zu arcs, %zu laced; %d trials per configuration, at most %d steps, stall stop after "
+      "%d switches\n",
+      dir.c_str(), cover.arcs.size(), laced.size(), trials, params.max_steps, stall);
   std::printf("%-22s | %-36s | %s\n", "configuration", "with the stall stop", "without it");
   std::printf("%-22s | %-36s | %s\n", "", "off / steps when off / stalled / steps",
               "off / steps when off / steps");

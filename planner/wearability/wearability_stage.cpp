@@ -96,13 +96,14 @@ void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) 
   check.trials = result.params.check_trials;
   const CoverMesh garment = check_garment(result, wearer);
   check.cloth_vertices = static_cast<int>(garment.positions.size());
+  WearabilityParams patient = result.params.test;
+  patient.cloth.stall_switches = result.params.check_stall_switches;
   for (int round = 0;; ++round) {
     CheckRound r;
     // "CHECK" tags the stream, apart from the elimination's seeds.
     r.seed =
         mix64(mix64(result.params.test.seed ^ 0x434845434BULL) + static_cast<std::uint64_t>(round));
-    r.test =
-        test_every_trial(garment, run.open(), wearer, result.params.test, r.seed, check.trials);
+    r.test = test_every_trial(garment, run.open(), wearer, patient, r.seed, check.trials);
     const bool passed = r.test.wearable;
     if (!passed) {
       // One arc, then twice as many each round: few arcs laced, few rounds.
@@ -424,7 +425,9 @@ std::string write_strip_off_frames(const Wearability& result,
   const PolygonMesh garment = open_cuts(dressed_mesh, run.open());
   // One thread: a garment of a few thousand vertices gains little from
   // splitting a step, and loses much when the cores are busy.
-  cloth::ClothSimulation sim(garment, wearer, result.params.test.cloth);
+  cloth::ClothParams cloth = result.params.test.cloth;
+  if (from_check) cloth.stall_switches = result.params.check_stall_switches;
+  cloth::ClothSimulation sim(garment, wearer, cloth);
   std::string failure;
   auto write_frame = [&](int step, const cloth::ClothSimulation& state) {
     std::ostringstream name;

@@ -33,6 +33,10 @@ struct WearabilityStageParams {
   int sdf_resolution = cloth::SdfParams{}.resolution;  // cells along the wearer's longest side
   // M: trials of the final check (FinalCheck below); 0 = no check.
   int check_trials = 4;
+  // The final check's trials stop after this many direction switches
+  // without progress: more patient than the elimination's, since every one
+  // of them must come off.
+  int check_stall_switches = cloth::ClothParams{}.stall_switches;
 };
 
 // The final check: the garment with the chosen run's laced arcs open must
