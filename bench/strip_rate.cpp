@@ -8,9 +8,9 @@
 // well. Every trial runs twice on the same directions, with the stall stop and
 // without it, so the successes the stop costs are counted on the same
 // trajectories; STALL sets the stop's switches without progress (the
-// elimination's 2 by default), to weigh another setting. The elimination's tests run K = 4
-// trials: a per-trial success rate p gives a test that passes with
-// probability 1 - (1 - p)^4.
+// elimination's 2 by default), to weigh another setting. The elimination's
+// tests run K = 4 trials: a per-trial success rate p gives a test that
+// passes with probability 1 - (1 - p)^4.
 //   strip_rate DIR WEARER.obj [TRIALS [MORE [THREADS [STALL]]]]   (defaults 24, 4, 2, 2)
 #include <algorithm>
 #include <atomic>

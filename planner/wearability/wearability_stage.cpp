@@ -83,6 +83,13 @@ CoverMesh check_garment(const Wearability& result, const cloth::SignedDistanceFi
                  result.params.test.cloth);
 }
 
+// The final check's trials: the elimination's, with the check's stall stop.
+WearabilityParams check_params(const WearabilityStageParams& params) {
+  WearabilityParams check = params.test;
+  check.cloth.stall_switches = params.check_stall_switches;
+  return check;
+}
+
 // The final check (FinalCheck): rounds of M trials on the chosen run's
 // configuration, opening arcs after each failed round.
 void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) {
@@ -96,8 +103,7 @@ void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) 
   check.trials = result.params.check_trials;
   const CoverMesh garment = check_garment(result, wearer);
   check.cloth_vertices = static_cast<int>(garment.positions.size());
-  WearabilityParams patient = result.params.test;
-  patient.cloth.stall_switches = result.params.check_stall_switches;
+  const WearabilityParams patient = check_params(result.params);
   for (int round = 0;; ++round) {
     CheckRound r;
     // "CHECK" tags the stream, apart from the elimination's seeds.
@@ -425,8 +431,8 @@ std::string write_strip_off_frames(const Wearability& result,
   const PolygonMesh garment = open_cuts(dressed_mesh, run.open());
   // One thread: a garment of a few thousand vertices gains little from
   // splitting a step, and loses much when the cores are busy.
-  cloth::ClothParams cloth = result.params.test.cloth;
-  if (from_check) cloth.stall_switches = result.params.check_stall_switches;
+  const cloth::ClothParams cloth =
+      from_check ? check_params(result.params).cloth : result.params.test.cloth;
   cloth::ClothSimulation sim(garment, wearer, cloth);
   std::string failure;
   auto write_frame = [&](int step, const cloth::ClothSimulation& state) {
