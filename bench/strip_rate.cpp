@@ -8,10 +8,14 @@
 // well. Every trial runs twice on the same directions, with the stall stop and
 // without it, so the successes the stop costs are counted on the same
 // trajectories; STALL sets the stop's switches without progress (the
-// elimination's 2 by default), to weigh another setting. The elimination's
+// elimination's 2 by default), to weigh another setting. CLOTH sets the
+// cloth: coarsened to CLOTH vertices (the stage's --cloth-max-vertices by
+// default, the elimination's cloth), 0 for the garment as it is, -1 for it
+// subdivided once (the final check's cloth when nothing is coarsened). The elimination's
 // tests run K = 4 trials: a per-trial success rate p gives a test that
 // passes with probability 1 - (1 - p)^4.
-//   strip_rate DIR WEARER.obj [TRIALS [MORE [THREADS [STALL]]]]   (defaults 24, 4, 2, 2)
+//   strip_rate DIR WEARER.obj [TRIALS [MORE [THREADS [STALL [CLOTH]]]]]
+//   (defaults 24, 4, 2, 2, 1000)
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -24,6 +28,7 @@
 #include <vector>
 
 #include "planner/pipeline.hpp"
+#include "planner/wearability/coarse_cloth.hpp"
 #include "planner/wearability/wearability.hpp"
 #include "planner/wearability/wearability_io.hpp"
 
@@ -46,7 +51,7 @@ struct Tally {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::cerr << "usage: strip_rate DIR WEARER.obj [TRIALS [MORE [THREADS [STALL]]]]\n";
+    std::cerr << "usage: strip_rate DIR WEARER.obj [TRIALS [MORE [THREADS [STALL [CLOTH]]]]]\n";
     return 2;
   }
   const std::string dir = argv[1];
@@ -55,6 +60,8 @@ int main(int argc, char** argv) {
   const int threads = argc > 5 ? std::max(1, std::atoi(argv[5])) : 2;
   const int stall =
       argc > 6 ? std::max(1, std::atoi(argv[6])) : planner::elimination_cloth().stall_switches;
+  const int cloth_vertices =
+      argc > 7 ? std::atoi(argv[7]) : planner::WearabilityStageParams{}.cloth_max_vertices;
 
   knitout::DiagnosticSink sink;
   // As the stage reads it by default (--cloth-vertices 500): a coarse garment
@@ -66,7 +73,10 @@ int main(int argc, char** argv) {
     knitout::print_text(std::cerr, sink.diagnostics());
     return 1;
   }
-  const planner::CoverMesh cover = planner::cover_of(*cut, 500);
+  const planner::CoverMesh full = planner::cover_of(*cut, 500);
+  const planner::CoverMesh cover = cloth_vertices < 0    ? planner::subdivided(full)
+                                   : cloth_vertices == 0 ? full
+                                                         : planner::coarsened(full, cloth_vertices);
   std::vector<bool> open(cover.arcs.size(), false);
   std::vector<int> laced;
   for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
@@ -118,8 +128,9 @@ int main(int argc, char** argv) {
 
   std::printf(
       "%s: %zu arcs, %zu laced; %d trials per configuration, at most %d steps, stall stop after "
-      "%d switches\n",
-      dir.c_str(), cover.arcs.size(), laced.size(), trials, params.max_steps, stall);
+      "%d switches; cloth of %zu vertices\n",
+      dir.c_str(), cover.arcs.size(), laced.size(), trials, params.max_steps, stall,
+      cover.positions.size());
   std::printf("%-22s | %-36s | %s\n", "configuration", "with the stall stop", "without it");
   std::printf("%-22s | %-36s | %s\n", "", "off / steps when off / stalled / steps",
               "off / steps when off / steps");

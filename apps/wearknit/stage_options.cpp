@@ -159,6 +159,10 @@ void add_wearability_options(po::options_description& options, WearabilityOption
       "cloth-vertices", po::value<int>(&p.cloth_vertices)->default_value(p.cloth_vertices),
       "wearability: subdivide a garment with fewer vertices until it has this many, so it can "
       "bend around the wearer (0 = never)")(
+      "cloth-max-vertices",
+      po::value<int>(&p.cloth_max_vertices)->default_value(p.cloth_max_vertices),
+      "wearability: simplify a garment with more vertices to about this many for the "
+      "elimination, every cut-arc kept (0 = never); the final check runs on a finer cloth")(
       "one-at-a-time",
       "wearability: test each arc on its own, as §5 does, instead of closing runs of arcs "
       "together while the garment keeps coming off");
@@ -195,9 +199,10 @@ double wearer_mm_per_unit(const po::variables_map& values, const WearerUnitOptio
 std::string check_wearability_options(const po::variables_map& values, WearabilityOptions& wear) {
   const planner::WearabilityStageParams& p = wear.params;
   if (p.test.trials < 1 || p.runs < 1 || p.test.cloth.max_steps < 1 || p.sdf_resolution < 8 ||
-      p.recut_limit < 0 || p.cloth_vertices < 0 || p.check_trials < 0) {
+      p.recut_limit < 0 || p.cloth_vertices < 0 || p.cloth_max_vertices < 0 || p.check_trials < 0) {
     return "the trials, --runs and --max-steps must be positive, --recut-limit, "
-           "--check-trials and --cloth-vertices not negative, --resolution at least 8";
+           "--check-trials, --cloth-vertices and --cloth-max-vertices not negative, "
+           "--resolution at least 8";
   }
   wear.params.test.group_testing = values.count("one-at-a-time") == 0;
   return {};

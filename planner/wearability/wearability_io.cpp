@@ -181,6 +181,10 @@ json summary_json(const Wearability& result) {
       {"seed", params.seed},
       {"max_steps", params.cloth.max_steps},
       {"switch_steps", params.cloth.switch_steps},
+      // The elimination's cloth: the garment's vertices, and the cloth's
+      // after coarsening (equal when it was simulated as it is).
+      {"garment_vertices", result.cover.positions.size()},
+      {"cloth_vertices", result.cloth.positions.size()},
   };
   if (!study.runs.empty()) {
     summary["initial_trials"] = trials_json(study.runs[chosen >= 0 ? chosen : 0].initial.trials);

@@ -16,6 +16,7 @@
 #include "planner/common/json_file.hpp"
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/pipeline.hpp"
+#include "planner/wearability/coarse_cloth.hpp"
 #include "planner/wearability/wearability_io.hpp"
 #include "planner/wearability/wearability_picture.hpp"
 
@@ -76,11 +77,19 @@ std::vector<int> arcs_to_open(const CoverMesh& cover, const EliminationResult& r
   return chosen;
 }
 
-// The final check's garment: one subdivision step finer than the
-// elimination's, then subdivided until it has cloth_vertices, dressed.
+// The final check's garment, finer than the elimination's: the garment as
+// it is when the elimination simulated it coarsened (the cut-mesh, the
+// cloth of §8.2), else one subdivision step finer; then subdivided until it
+// has cloth_vertices, dressed. A garment subdivided further than that is
+// softer than the cloth it stands for: at a fixed count of constraint
+// iterations, a closed shell stretched over four times the vertices slips
+// over its wearer between the points that collide (docs/wearability.md,
+// "The cloth's resolution").
 CoverMesh check_garment(const Wearability& result, const cloth::SignedDistanceField& wearer) {
-  return dressed(refined_for_cloth(subdivided(result.cover), result.params.cloth_vertices), wearer,
-                 result.params.test.cloth);
+  const bool coarsened = result.cloth.positions.size() != result.cover.positions.size();
+  return dressed(refined_for_cloth(coarsened ? result.cover : subdivided(result.cover),
+                                   result.params.cloth_vertices),
+                 wearer, result.params.test.cloth);
 }
 
 // The final check's trials: the elimination's, with the check's stall stop.
@@ -143,7 +152,8 @@ Wearability label(CoverMesh garment, const Cut* cut, const cloth::SignedDistance
   if (cut != nullptr) seed = cut->report.params.seed;
   result.cover = std::move(garment);
   for (int attempt = 0;; ++attempt) {
-    result.study = study_lacing(result.cover, wearer, test, params.runs, callbacks.progress);
+    result.cloth = coarsened(result.cover, params.cloth_max_vertices);
+    result.study = study_lacing(result.cloth, wearer, test, params.runs, callbacks.progress);
     CutAttempt tried;
     tried.attempt = attempt;
     tried.cut_seed = seed;
@@ -236,7 +246,8 @@ std::uint64_t journal_context(const PolygonMesh& wearer, const WearabilityStageP
   std::ostringstream text;
   text << "program " << fingerprint(program) << " wearer " << fingerprint(wearer_text.str())
        << " trials " << params.test.trials << " max-steps " << params.test.cloth.max_steps
-       << " resolution " << params.sdf_resolution << " cloth-vertices " << params.cloth_vertices;
+       << " resolution " << params.sdf_resolution << " cloth-vertices " << params.cloth_vertices
+       << " cloth-max-vertices " << params.cloth_max_vertices;
   return fingerprint(text.str());
 }
 
@@ -276,7 +287,11 @@ std::string describe(const Wearability& result) {
     text << "; re-cut with " << seed_text(result.cut_seed()) << " (attempt "
          << result.attempts.size() - 1 << " of " << result.params.recut_limit << ")";
   }
-  text << "; " << steps << " steps in " << std::fixed << std::setprecision(1) << seconds << " s";
+  text << "; " << steps << " steps";
+  if (result.cloth.positions.size() != result.cover.positions.size())
+    text << " of a cloth of " << result.cloth.positions.size() << " vertices (the garment's "
+         << result.cover.positions.size() << ", coarsened)";
+  text << " in " << std::fixed << std::setprecision(1) << seconds << " s";
   if (replayed > 0) text << " (" << replayed << " tests read from the journal)";
   text << '\n';
   const FinalCheck& check = result.check;
@@ -425,7 +440,7 @@ std::string write_strip_off_frames(const Wearability& result,
   const bool from_check = check.passed && check.reopened() > 0;
   const CoverMesh dressed_mesh = from_check
                                      ? check_garment(result, wearer)
-                                     : dressed(result.cover, wearer, result.params.test.cloth);
+                                     : dressed(result.cloth, wearer, result.params.test.cloth);
   const std::uint64_t seed =
       from_check ? check.rounds.back().test.trials.front().seed : final_seed(run);
   const PolygonMesh garment = open_cuts(dressed_mesh, run.open());

@@ -30,6 +30,11 @@ struct WearabilityStageParams {
   // A garment with fewer vertices is subdivided until it has this many, so
   // it can bend around the wearer (refined_for_cloth; 0 = never).
   int cloth_vertices = 500;
+  // A garment with more vertices is simplified to about this many for the
+  // elimination (coarsened, coarse_cloth.hpp; 0 = never): a step costs time
+  // in proportion to the cloth's vertices, and the strip-off needs far
+  // fewer than the proxy has.
+  int cloth_max_vertices = 1000;
   int sdf_resolution = cloth::SdfParams{}.resolution;  // cells along the wearer's longest side
   // M: trials of the final check (FinalCheck below); 0 = no check.
   int check_trials = 4;
@@ -79,6 +84,7 @@ struct Wearability {
   std::optional<Cut> recut;          // the cut the labels belong to, when not the one given
   std::uint64_t cut_id = 0;          // the id of the cut given (Cut::id)
   CoverMesh cover;                   // the garment of the labelled cut, refined for the cloth
+  CoverMesh cloth;                   // the elimination's: `cover` coarsened to cloth_max_vertices
   LacingStudy study;                 // of that cut
   std::vector<CutAttempt> attempts;  // every cut tried, in order
   FinalCheck check;                  // of the chosen run's labels (its arcs say which it laced)
