@@ -148,6 +148,9 @@ json attempts_json(const std::vector<CutAttempt>& attempts) {
                   {"wearable", a.wearable},
                   {"initial_trials", trials_json(a.trials)}};
     if (!a.failure.empty()) entry["failure"] = a.failure;
+    if (a.cloth_vertices > 0) entry["cloth_vertices"] = a.cloth_vertices;
+    // The coarse cloth that did not come off with every cut open.
+    if (a.coarse_cloth_vertices > 0) entry["coarse_cloth_vertices"] = a.coarse_cloth_vertices;
     list.push_back(entry);
   }
   return list;

@@ -154,7 +154,19 @@ Wearability label(CoverMesh garment, const Cut* cut, const cloth::SignedDistance
   for (int attempt = 0;; ++attempt) {
     result.cloth = coarsened(result.cover, params.cloth_max_vertices);
     result.study = study_lacing(result.cloth, wearer, test, params.runs, callbacks.progress);
+    int coarse_vertices = 0;
+    while (!result.wearable() && result.cloth.positions.size() < result.cover.positions.size()) {
+      // The coarse cloth does not come off even with every cut open: too
+      // coarse to bend off this wearer. A cloth of twice the vertices, up
+      // to the garment's own (§8.2), answers before the cut is called
+      // unwearable.
+      coarse_vertices = static_cast<int>(result.cloth.positions.size());
+      result.cloth = coarsened(result.cover, 2 * coarse_vertices);
+      result.study = study_lacing(result.cloth, wearer, test, params.runs, callbacks.progress);
+    }
     CutAttempt tried;
+    tried.cloth_vertices = static_cast<int>(result.cloth.positions.size());
+    tried.coarse_cloth_vertices = coarse_vertices;
     tried.attempt = attempt;
     tried.cut_seed = seed;
     tried.arcs = static_cast<int>(result.cover.arcs.size());

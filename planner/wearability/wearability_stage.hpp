@@ -46,8 +46,9 @@ struct WearabilityStageParams {
 
 // The final check: the garment with the chosen run's laced arcs open must
 // come off in every one of M fresh trials, with seeds the elimination never
-// used and the cloth one subdivision step finer than the elimination's
-// (planner::subdivided), and further subdivided until it has at least
+// used and a cloth finer than the elimination's (the garment as it is when
+// the elimination's was coarsened, else one subdivision step finer,
+// planner::subdivided), further subdivided until it has at least
 // cloth_vertices vertices, so that neither a lucky trial nor a resolution
 // too coarse to hold the garment decides the labels. When a trial fails,
 // the sewn arcs nearest where it stays caught are opened (laced), one in
@@ -77,6 +78,11 @@ struct CutAttempt {
   bool wearable = false;             // the garment with every cut open came off
   std::vector<TrialOutcome> trials;  // of that initial test (run 0)
   std::string failure;               // why this attempt could not be made (the re-cut failed)
+  int cloth_vertices = 0;            // of the cloth the elimination ran on
+  // The last coarser cloth that did not come off with every cut open, so
+  // the elimination ran on a finer one: its vertices (0 when the first
+  // cloth came off or the garment was not coarsened).
+  int coarse_cloth_vertices = 0;
 };
 
 struct Wearability {

@@ -177,5 +177,36 @@ TEST(CoarseClothTest, TheStageEliminatesOnTheCoarseClothAndChecksOnTheGarment) {
       << planner::describe(result);
 }
 
+TEST(CoarseClothTest, AClothTooCoarseToComeOffGivesWayToAFinerOne) {
+  // The same torus cover coarsened to about 40 vertices: a cloth that stiff
+  // does not bend off the tube even cut into a disc (as the 6 x 5 cover of
+  // ACoarseTorusCoverComesOffOnceSubdivided). Before the cut is called
+  // unwearable, cloths of twice the vertices are tried in turn.
+  const CoverMesh cover = torus_cover(1.0, 0.4, 96, 24, 3);
+  cloth::SdfParams sdf;
+  sdf.resolution = 48;
+  const CoverMesh torus = torus_mesh(1.0, 0.4, 96, 24);
+  const cloth::SignedDistanceField wearer(torus.positions, torus.faces, sdf);
+  planner::WearabilityStageParams params;
+  params.test.cloth.max_steps = 1500;
+  params.test.trials = 2;
+  params.test.threads = 2;
+  params.test.seed = 5;
+  params.recut_limit = 0;
+  params.check_trials = 0;
+  params.cloth_max_vertices = 40;
+  const auto result = planner::label_garment(cover, wearer, params);
+  ASSERT_TRUE(result.wearable());
+  ASSERT_EQ(result.attempts.size(), 1u);
+  const auto& attempt = result.attempts.front();
+  EXPECT_TRUE(attempt.wearable);
+  EXPECT_GT(attempt.coarse_cloth_vertices, 0);
+  EXPECT_LE(attempt.coarse_cloth_vertices, static_cast<int>(cover.positions.size()) / 2);
+  EXPECT_EQ(attempt.cloth_vertices, static_cast<int>(result.cloth.positions.size()));
+  EXPECT_GT(result.cloth.positions.size(), 40u);
+  // The coarse cloth that failed was coarser than the one that answered.
+  EXPECT_LT(attempt.coarse_cloth_vertices, attempt.cloth_vertices);
+}
+
 }  // namespace
 }  // namespace wearknit::test
