@@ -1,7 +1,6 @@
 // Sampling for the remesher (remesh.hpp): the input triangulated and
 // brought to the sample spacing with OpenMesh's decimater, 1-to-4
 // subdivision and midpoint splits.
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
 #include <OpenMesh/Tools/Decimater/ModEdgeLengthT.hh>
@@ -13,6 +12,7 @@
 
 #include "knitout/diagnostic.hpp"
 #include "planner/common/index.hpp"
+#include "planner/mesh/decimation_mesh.hpp"
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/mesh/soup.hpp"
 #include "planner/proxy/remesh.hpp"
@@ -21,15 +21,7 @@ namespace planner {
 
 namespace {
 
-struct TriTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-  VertexAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
-  EdgeAttributes(OpenMesh::Attributes::Status);
-  FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
-  HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
-};
-using TriMesh = OpenMesh::TriMesh_ArrayKernelT<TriTraits>;
+using TriMesh = DecimationMesh;
 
 TriMesh to_trimesh(const PolygonMesh& input) {
   TriMesh tri;

@@ -1,6 +1,5 @@
 #include "planner/wearability/coarse_cloth.hpp"
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <algorithm>
@@ -11,20 +10,13 @@
 #include <vector>
 
 #include "planner/common/index.hpp"
+#include "planner/mesh/decimation_mesh.hpp"
 
 namespace planner {
 
 namespace {
 
-struct Traits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-  VertexAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
-  EdgeAttributes(OpenMesh::Attributes::Status);
-  FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
-  HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
-};
-using TriMesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+using TriMesh = DecimationMesh;
 
 std::uint64_t undirected(int a, int b) {
   if (a > b) std::swap(a, b);

@@ -140,21 +140,36 @@ TEST(CoarseClothTest, AnOpenCapKeepsOneBoundaryLoop) {
   EXPECT_EQ(arc_ends(coarse, coarse.arcs[0]), arc_ends(cap, cap.arcs[0]));
 }
 
-TEST(CoarseClothTest, TheStageEliminatesOnTheCoarseClothAndChecksOnTheGarment) {
-  // A 96 x 24 torus cover (2,304 vertices) over its torus: cut into a disc
-  // it comes off; sewing an equator arc closes a band around the tube, which
-  // never does. The coarse cloth gives the same answer.
-  const CoverMesh cover = torus_cover(1.0, 0.4, 96, 24, 3);
-  cloth::SdfParams sdf;
-  sdf.resolution = 48;
-  const CoverMesh torus = torus_mesh(1.0, 0.4, 96, 24);
-  const cloth::SignedDistanceField wearer(torus.positions, torus.faces, sdf);
+// The wearer of the stage runs below: the 96 x 24 torus.
+const cloth::SignedDistanceField& fine_torus_field() {
+  static const auto field = [] {
+    cloth::SdfParams sdf;
+    sdf.resolution = 48;
+    const CoverMesh torus = torus_mesh(1.0, 0.4, 96, 24);
+    return cloth::SignedDistanceField(torus.positions, torus.faces, sdf);
+  }();
+  return field;
+}
+
+// A test budget (1500 steps, 2 trials on two threads) and no re-cut: a
+// garment made in code has no proxy to cut again.
+planner::WearabilityStageParams stage_params() {
   planner::WearabilityStageParams params;
   params.test.cloth.max_steps = 1500;
   params.test.trials = 2;
   params.test.threads = 2;
   params.test.seed = 5;
   params.recut_limit = 0;
+  return params;
+}
+
+TEST(CoarseClothTest, TheStageEliminatesOnTheCoarseClothAndChecksOnTheGarment) {
+  // A 96 x 24 torus cover (2,304 vertices) over its torus: cut into a disc
+  // it comes off; sewing an equator arc closes a band around the tube, which
+  // never does. The coarse cloth gives the same answer.
+  const CoverMesh cover = torus_cover(1.0, 0.4, 96, 24, 3);
+  const cloth::SignedDistanceField& wearer = fine_torus_field();
+  planner::WearabilityStageParams params = stage_params();
   params.cloth_max_vertices = 600;
   const auto result = planner::label_garment(cover, wearer, params);
   ASSERT_TRUE(result.wearable());
@@ -183,16 +198,8 @@ TEST(CoarseClothTest, AClothTooCoarseToComeOffGivesWayToAFinerOne) {
   // ACoarseTorusCoverComesOffOnceSubdivided). Before the cut is called
   // unwearable, cloths of twice the vertices are tried in turn.
   const CoverMesh cover = torus_cover(1.0, 0.4, 96, 24, 3);
-  cloth::SdfParams sdf;
-  sdf.resolution = 48;
-  const CoverMesh torus = torus_mesh(1.0, 0.4, 96, 24);
-  const cloth::SignedDistanceField wearer(torus.positions, torus.faces, sdf);
-  planner::WearabilityStageParams params;
-  params.test.cloth.max_steps = 1500;
-  params.test.trials = 2;
-  params.test.threads = 2;
-  params.test.seed = 5;
-  params.recut_limit = 0;
+  const cloth::SignedDistanceField& wearer = fine_torus_field();
+  planner::WearabilityStageParams params = stage_params();
   params.check_trials = 0;
   params.cloth_max_vertices = 40;
   const auto result = planner::label_garment(cover, wearer, params);
