@@ -11,6 +11,7 @@
 
 #include "planner/common/index.hpp"
 #include "planner/mesh/decimation_mesh.hpp"
+#include "planner/mesh/soup.hpp"
 
 namespace planner {
 
@@ -18,9 +19,10 @@ namespace {
 
 using TriMesh = DecimationMesh;
 
+// The key of the undirected edge a–b: the smaller index in the high bits.
 std::uint64_t undirected(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+  const auto [lo, hi] = undirected_edge(a, b);
+  return pair_key(lo, hi);
 }
 
 // The cut edges (arcs, then one chain per boundary loop) while the mesh is
@@ -159,10 +161,11 @@ std::vector<std::array<int, 2>> boundary_edges(const CoverMesh& mesh) {
   return result;
 }
 
+constexpr double kDegree = std::numbers::pi / 180.0;
+
 // Corner angle at b between a and c, in degrees.
 double corner(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 u = a - b, w = c - b;
-  return std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / std::numbers::pi;
+  return angle_between(a - b, c - b) / kDegree;
 }
 
 // Triangles paired across free edges into quads, nearest-square first; a
@@ -175,8 +178,7 @@ std::vector<std::vector<int>> paired(const std::vector<Vec3>& positions,
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int i = 0; i < 3; ++i) {
       const int a = triangles[t][at(i)], b = triangles[t][at((i + 1) % 3)];
-      half[(static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b)] = {
-          static_cast<int>(t), i};
+      half[pair_key(a, b)] = {static_cast<int>(t), i};
     }
   struct Candidate {
     double score;
@@ -189,15 +191,14 @@ std::vector<std::vector<int>> paired(const std::vector<Vec3>& positions,
       const auto& tri = triangles[t];
       const int p = tri[at((i + 2) % 3)], u = tri[at(i)], v = tri[at((i + 1) % 3)];
       if (u > v) continue;  // each edge once
-      const auto across =
-          half.find((static_cast<std::uint64_t>(v) << 32) | static_cast<std::uint32_t>(u));
+      const auto across = half.find(pair_key(v, u));
       if (across == half.end() || chains.is_cut(original[at(u)], original[at(v)])) continue;
       const auto& other = triangles[at(across->second[0])];
       const int q = other[at((across->second[1] + 2) % 3)];
       const Vec3 &P = positions[at(p)], &U = positions[at(u)], &Q = positions[at(q)],
                  &V = positions[at(v)];
       const Vec3 n1 = (U - P).cross(V - P), n2 = (U - V).cross(Q - V);
-      const double bend = std::atan2(n1.cross(n2).norm(), n1.dot(n2)) * 180.0 / std::numbers::pi;
+      const double bend = angle_between(n1, n2) / kDegree;
       if (bend >= 40.0) continue;
       // Convex seen along the pair's mean normal, every corner within 45°
       // of square.

@@ -86,8 +86,7 @@ std::vector<int> arcs_to_open(const CoverMesh& cover, const EliminationResult& r
 // over its wearer between the points that collide (docs/wearability.md,
 // "The cloth's resolution").
 CoverMesh check_garment(const Wearability& result, const cloth::SignedDistanceField& wearer) {
-  const bool coarsened = result.cloth.positions.size() != result.cover.positions.size();
-  return dressed(refined_for_cloth(coarsened ? result.cover : subdivided(result.cover),
+  return dressed(refined_for_cloth(result.coarse_cloth() ? result.cover : subdivided(result.cover),
                                    result.params.cloth_vertices),
                  wearer, result.params.test.cloth);
 }
@@ -155,7 +154,7 @@ Wearability label(CoverMesh garment, const Cut* cut, const cloth::SignedDistance
     result.cloth = coarsened(result.cover, params.cloth_max_vertices);
     result.study = study_lacing(result.cloth, wearer, test, params.runs, callbacks.progress);
     int coarse_vertices = 0;
-    while (!result.wearable() && result.cloth.positions.size() < result.cover.positions.size()) {
+    while (!result.wearable() && result.coarse_cloth()) {
       // The coarse cloth does not come off even with every cut open: too
       // coarse to bend off this wearer. A cloth of twice the vertices, up
       // to the garment's own (§8.2), answers before the cut is called
@@ -300,7 +299,7 @@ std::string describe(const Wearability& result) {
          << result.attempts.size() - 1 << " of " << result.params.recut_limit << ")";
   }
   text << "; " << steps << " steps";
-  if (result.cloth.positions.size() != result.cover.positions.size())
+  if (result.coarse_cloth())
     text << " of a cloth of " << result.cloth.positions.size() << " vertices (the garment's "
          << result.cover.positions.size() << ", coarsened)";
   text << " in " << std::fixed << std::setprecision(1) << seconds << " s";

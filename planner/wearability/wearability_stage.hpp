@@ -87,16 +87,20 @@ struct CutAttempt {
 
 struct Wearability {
   WearabilityStageParams params;
-  std::optional<Cut> recut;          // the cut the labels belong to, when not the one given
-  std::uint64_t cut_id = 0;          // the id of the cut given (Cut::id)
-  CoverMesh cover;                   // the garment of the labelled cut, refined for the cloth
-  CoverMesh cloth;                   // the elimination's: `cover` coarsened to cloth_max_vertices
+  std::optional<Cut> recut;  // the cut the labels belong to, when not the one given
+  std::uint64_t cut_id = 0;  // the id of the cut given (Cut::id)
+  CoverMesh cover;           // the garment of the labelled cut, refined for the cloth
+  // The elimination's: `cover` coarsened to cloth_max_vertices, or finer
+  // when that cloth did not come off with every cut open (CutAttempt).
+  CoverMesh cloth;
   LacingStudy study;                 // of that cut
   std::vector<CutAttempt> attempts;  // every cut tried, in order
   FinalCheck check;                  // of the chosen run's labels (its arcs say which it laced)
   double seconds = 0;
 
   bool wearable() const { return chosen_run(study) >= 0; }
+  // The elimination simulated a cloth coarser than the garment.
+  bool coarse_cloth() const { return cloth.positions.size() < cover.positions.size(); }
   // The seed of the cut the labels belong to (unknown for a garment made by hand).
   std::optional<std::uint64_t> cut_seed() const;
 };
