@@ -165,7 +165,11 @@ void add_wearability_options(po::options_description& options, WearabilityOption
       "elimination, every cut-arc kept (0 = never); the final check runs on a finer cloth")(
       "one-at-a-time",
       "wearability: test each arc on its own, as §5 does, instead of closing runs of arcs "
-      "together while the garment keeps coming off");
+      "together while the garment keeps coming off")(
+      "simulate-linked",
+      "wearability: simulate every test, also of a garment with a curve linked around a "
+      "handle of the wearer, which cannot come off (by default such a test fails without "
+      "a simulation)");
 }
 
 void add_wearer_unit_options(po::options_description& options, WearerUnitOptions& wearer) {
@@ -205,6 +209,7 @@ std::string check_wearability_options(const po::variables_map& values, Wearabili
            "--resolution at least 8";
   }
   wear.params.test.group_testing = values.count("one-at-a-time") == 0;
+  wear.params.test.linking = values.count("simulate-linked") == 0;
   return {};
 }
 

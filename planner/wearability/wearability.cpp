@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "planner/common/union_find.hpp"
+#include "planner/wearability/linking.hpp"
 #include "simulators/cloth/parallel.hpp"
 
 namespace planner {
@@ -472,8 +473,18 @@ EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceFi
     params.record->add(key, fresh);
     return fresh;
   };
-  // A test inferred from an earlier run's pass, else simulate_test.
+  const std::optional<LinkingTest> linking =
+      params.linking ? std::optional<LinkingTest>(std::in_place, wearer) : std::nullopt;
+  // A test failed by the linking test, else inferred from an earlier run's
+  // pass, else simulate_test. The linking test comes first: a linked
+  // configuration cannot come off even if a simulation let it through.
   auto run_test = [&](std::uint64_t seed) {
+    if (linking && linking->linked(open_cuts(garment, open))) {
+      ++result.linked;
+      TestResult known;
+      known.linked = true;
+      return known;
+    }
     if (passed != nullptr && passed->covers(open)) {
       ++result.inferred;
       TestResult known;

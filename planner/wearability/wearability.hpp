@@ -150,6 +150,10 @@ struct WearabilityParams {
   // off without a test (opening more never makes a garment harder to
   // take off).
   bool reuse_passes = true;
+  // Fail without a simulation a configuration in which a closed curve of
+  // the garment winds around a handle of the wearer (planner/wearability/
+  // linking.hpp): it cannot come off, whatever the trials would find.
+  bool linking = true;
 };
 
 // The open-arc sets of configurations that came off, shared by the runs of
@@ -187,6 +191,9 @@ struct TestResult {
   // Not simulated: an earlier run of the study passed with a subset of
   // this test's open arcs (LacingStudy, WearabilityParams::reuse_passes).
   bool inferred = false;
+  // Not simulated: a curve of the garment is linked with the wearer
+  // (WearabilityParams::linking), so it cannot come off.
+  bool linked = false;
 };
 
 enum class Label : std::uint8_t { Lace, Sew };
@@ -214,6 +221,7 @@ struct EliminationResult {
   int tests = 0;                // tests run after the initial one
   int replayed = 0;             // tests (the initial one included) read from params.record
   int inferred = 0;             // tests passed from an earlier run's (TestResult::inferred)
+  int linked = 0;               // tests failed by the linking test (TestResult::linked)
   double seconds = 0;
   std::uint64_t steps = 0;
   std::uint64_t projections = 0;

@@ -148,6 +148,7 @@ json attempts_json(const std::vector<CutAttempt>& attempts) {
                   {"wearable", a.wearable},
                   {"initial_trials", trials_json(a.trials)}};
     if (!a.failure.empty()) entry["failure"] = a.failure;
+    if (a.linked) entry["linked_with_wearer"] = true;
     if (a.cloth_vertices > 0) entry["cloth_vertices"] = a.cloth_vertices;
     // The coarse cloth that did not come off with every cut open.
     if (a.coarse_cloth_vertices > 0) entry["coarse_cloth_vertices"] = a.coarse_cloth_vertices;
@@ -181,6 +182,7 @@ json summary_json(const Wearability& result) {
       {"chosen_run", chosen},
       {"trials_per_test", params.trials},
       {"group_testing", params.group_testing},
+      {"linking_test", params.linking},
       {"seed", params.seed},
       {"max_steps", params.cloth.max_steps},
       {"switch_steps", params.cloth.switch_steps},
@@ -203,6 +205,9 @@ json summary_json(const Wearability& result) {
     // Passed without a simulation: an earlier run passed a subset of its
     // open arcs (WearabilityParams::reuse_passes).
     summary["tests_inferred"] = run.inferred;
+    // Failed without a simulation: a garment curve links the wearer
+    // (WearabilityParams::linking).
+    summary["tests_linked"] = run.linked;
     summary["laced"] = static_cast<int>(run.arcs.size()) - sewn;
   }
   summary["final_check"] = check_json(result.check);
@@ -237,6 +242,7 @@ json wearability_json(const Wearability& result, std::uint64_t labelled_cut_id) 
                    {"trials", trials_json(arc.test.trials)}};
     if (arc.reopened) detail["laced_by_final_check"] = true;
     if (arc.test.inferred) detail["inferred_from_earlier_run"] = true;
+    if (arc.test.linked) detail["linked_with_wearer"] = true;
     if (study.runs.size() > 1) detail["lace_probability"] = study.lace_probability[a];
     entry["wearability"] = detail;
     arcs.push_back(entry);

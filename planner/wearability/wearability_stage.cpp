@@ -154,7 +154,11 @@ Wearability label(CoverMesh garment, const Cut* cut, const cloth::SignedDistance
     result.cloth = coarsened(result.cover, params.cloth_max_vertices);
     result.study = study_lacing(result.cloth, wearer, test, params.runs, callbacks.progress);
     int coarse_vertices = 0;
-    while (!result.wearable() && result.coarse_cloth()) {
+    // A garment linked with the wearer stays linked on any cloth.
+    auto linked = [&] {
+      return !result.study.runs.empty() && result.study.runs.front().initial.linked;
+    };
+    while (!result.wearable() && result.coarse_cloth() && !linked()) {
       // The coarse cloth does not come off even with every cut open: too
       // coarse to bend off this wearer. A cloth of twice the vertices, up
       // to the garment's own (§8.2), answers before the cut is called
@@ -170,6 +174,7 @@ Wearability label(CoverMesh garment, const Cut* cut, const cloth::SignedDistance
     tried.cut_seed = seed;
     tried.arcs = static_cast<int>(result.cover.arcs.size());
     tried.wearable = result.wearable();
+    tried.linked = linked();
     if (!result.study.runs.empty()) tried.trials = result.study.runs.front().initial.trials;
     result.attempts.push_back(tried);
     if (callbacks.attempted) callbacks.attempted(tried);
@@ -283,11 +288,13 @@ std::string describe(const Wearability& result) {
     sewn += arc.label == Label::Sew;
   double seconds = 0;
   std::uint64_t steps = 0;
-  int replayed = 0;
+  int replayed = 0, tests = 0, linked = 0;
   for (const auto& run : study.runs) {
     seconds += run.seconds;
     steps += run.steps;
     replayed += run.replayed;
+    tests += run.tests + 1;
+    linked += run.linked;
   }
   const std::size_t arcs = result.cover.arcs.size();
   std::ostringstream text;
@@ -304,6 +311,10 @@ std::string describe(const Wearability& result) {
          << result.cover.positions.size() << ", coarsened)";
   text << " in " << std::fixed << std::setprecision(1) << seconds << " s";
   if (replayed > 0) text << " (" << replayed << " tests read from the journal)";
+  if (linked > 0) {
+    text << "; " << linked << " of " << tests
+         << " tests failed unsimulated, a garment curve linked with the wearer";
+  }
   text << '\n';
   const FinalCheck& check = result.check;
   if (check.ran) {
@@ -345,9 +356,17 @@ const TrialOutcome* farthest_failed_trial(const Wearability& result) {
 
 std::string not_wearable_message(const Wearability& result) {
   std::ostringstream text;
-  text << "the garment with every cut open did not come off the wearer in "
-       << result.params.test.trials << " trials of " << result.params.test.cloth.max_steps
-       << " steps, ";
+  bool every_linked = true;
+  for (const auto& a : result.attempts)
+    every_linked = every_linked && (!a.failure.empty() || a.linked);
+  if (every_linked) {
+    text << "the garment with every cut open cannot come off the wearer: a closed curve of it "
+            "winds around a handle of the wearer, ";
+  } else {
+    text << "the garment with every cut open did not come off the wearer in "
+         << result.params.test.trials << " trials of " << result.params.test.cloth.max_steps
+         << " steps, ";
+  }
   std::vector<std::string> made;
   std::string not_made;
   for (const auto& a : result.attempts) {

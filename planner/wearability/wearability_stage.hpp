@@ -75,7 +75,9 @@ struct CutAttempt {
   int attempt = 0;
   std::optional<std::uint64_t> cut_seed;  // unknown for a garment made by hand
   int arcs = 0;
-  bool wearable = false;             // the garment with every cut open came off
+  bool wearable = false;  // the garment with every cut open came off
+  // It could not: a curve of it is linked with the wearer (no trials ran).
+  bool linked = false;
   std::vector<TrialOutcome> trials;  // of that initial test (run 0)
   std::string failure;               // why this attempt could not be made (the re-cut failed)
   int cloth_vertices = 0;            // of the cloth the elimination ran on

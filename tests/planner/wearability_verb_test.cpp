@@ -59,10 +59,16 @@ TEST(WearabilityVerbTest, LabelsTorusCoverArcsAndWritesPictureAndFrames) {
   EXPECT_NE(result.out.find("wearability: 2 arcs, "), std::string::npos) << result.out;
   const auto cuts = nlohmann::json::parse(read_file(dir / "cuts.json"));
   ASSERT_EQ(cuts["arcs"].size(), 2u);
-  // Sewing the outer equator closes a band around the tube.
+  // Sewing the outer equator closes a band around the tube: linked with
+  // the torus, it fails without a trial.
   EXPECT_EQ(cuts["arcs"][1]["label"], "lace");
-  EXPECT_EQ(cuts["arcs"][1]["wearability"]["trials"].size(), 2u);
-  EXPECT_EQ(cuts["arcs"][1]["wearability"]["trials"][0]["success"], false);
+  EXPECT_EQ(cuts["arcs"][1]["wearability"]["linked_with_wearer"], true);
+  EXPECT_EQ(cuts["arcs"][1]["wearability"]["trials"].size(), 0u);
+  EXPECT_EQ(cuts["wearability"]["tests_linked"], 1);
+  EXPECT_NE(result.out.find("; 1 of 3 tests failed unsimulated, a garment curve linked with the "
+                            "wearer\n"),
+            std::string::npos)
+      << result.out;
   EXPECT_EQ(cuts["arcs"][0]["kept"], "as written");
   EXPECT_EQ(cuts["wearability"]["wearable"], true);
   // The final check ran on the labels at a finer cloth, every trial off;
@@ -157,8 +163,10 @@ TEST(WearabilityVerbTest, UnwearableCutIsCutAgainWithAnotherSeed) {
   const fs::path dir = write_closed_torus_cut("wearability-recut");
   const fs::path cut = dir / "cut";
   const std::uint64_t recut_seed = planner::recut_seed(3, 1);
-  // A short budget keeps the elimination of the new cut's many arcs quick;
-  // the new cut, a disc, comes off within it (seed 3: 230 steps).
+  // The folder's cut has no arcs: the garment is the closed torus, linked
+  // with its wearer, so it fails without a trial. A short budget keeps the
+  // elimination of the new cut's many arcs quick; the new cut, a disc,
+  // comes off within it (seed 3: 230 steps).
   const auto result =
       run_wearknit("wearability " + cut.string() + " --wearer " + (dir / "torus.obj").string() +
                    " --trials 1 --max-steps 400 --seed 3 --resolution 32 --cloth-vertices 0");
@@ -185,10 +193,11 @@ TEST(WearabilityVerbTest, UnwearableCutIsCutAgainWithAnotherSeed) {
   EXPECT_EQ(summary["cut_attempts"][0]["cut_seed"], 1);
   EXPECT_EQ(summary["cut_attempts"][0]["arcs"], 0);
   EXPECT_EQ(summary["cut_attempts"][0]["wearable"], false);
-  ASSERT_EQ(summary["cut_attempts"][0]["initial_trials"].size(), 1u);
-  EXPECT_EQ(summary["cut_attempts"][0]["initial_trials"][0]["steps"], 400);
+  EXPECT_EQ(summary["cut_attempts"][0]["linked_with_wearer"], true);
+  EXPECT_EQ(summary["cut_attempts"][0]["initial_trials"].size(), 0u);
   EXPECT_EQ(summary["cut_attempts"][1]["cut_seed"], recut_seed);
   EXPECT_EQ(summary["cut_attempts"][1]["wearable"], true);
+  EXPECT_FALSE(summary["cut_attempts"][1].contains("linked_with_wearer"));
 
   // report.json: the new seed, the input kept, every attempt.
   const auto report = nlohmann::json::parse(read_file(cut / "report.json"));
@@ -214,12 +223,14 @@ TEST(WearabilityVerbTest, UnwearableCutIsCutAgainWithAnotherSeed) {
 
 TEST(WearabilityVerbTest, NoWearableCutWithinTheLimitIsW020NamingEveryAttempt) {
   // Ten steps cannot take any cover off (the garment moves at most half a
-  // clearance per step), so every cut fails.
+  // clearance per step), so every cut fails. The folder's cut, the closed
+  // torus, is simulated too (--simulate-linked).
   const fs::path dir = write_closed_torus_cut("wearability-recut-fails");
   const fs::path cut = dir / "cut";
   const std::string base = "wearability " + cut.string() + " --wearer " +
                            (dir / "torus.obj").string() +
-                           " --trials 1 --max-steps 10 --seed 3 --resolution 24 --cloth-vertices 0";
+                           " --trials 1 --max-steps 10 --seed 3 --resolution 24 --cloth-vertices 0"
+                           " --simulate-linked";
   auto result = run_wearknit(base + " --recut-limit 0");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_EQ(result.err,
@@ -258,6 +269,26 @@ TEST(WearabilityVerbTest, NoWearableCutWithinTheLimitIsW020NamingEveryAttempt) {
   EXPECT_EQ(cuts["wearability"]["wearable"], false);
   EXPECT_EQ(cuts["wearability"]["recut"], true);
   for (const auto& arc : cuts["arcs"]) EXPECT_EQ(arc["label"], "lace");
+  fs::remove_all(dir);
+}
+
+TEST(WearabilityVerbTest, AGarmentLinkedWithItsWearerIsW020WithoutATrial) {
+  const fs::path dir = write_closed_torus_cut("wearability-linked");
+  const fs::path cut = dir / "cut";
+  const auto result =
+      run_wearknit("wearability " + cut.string() + " --wearer " + (dir / "torus.obj").string() +
+                   " --trials 1 --max-steps 10 --seed 3 --resolution 24 --cloth-vertices 0"
+                   " --recut-limit 0");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_EQ(result.err, (cut / "wearability.json").string() +
+                            ": error: [W020] the garment with every cut open cannot come off the "
+                            "wearer: a closed curve of it winds around a handle of the wearer, "
+                            "with the cut of seed 1 (the folder's) (--recut-limit 0); every arc "
+                            "is labelled lace\n");
+  const auto report = nlohmann::json::parse(read_file(cut / "report.json"));
+  ASSERT_EQ(report["wearability"]["cut_attempts"].size(), 1u);
+  EXPECT_EQ(report["wearability"]["cut_attempts"][0]["linked_with_wearer"], true);
+  EXPECT_EQ(report["wearability"]["cut_attempts"][0]["initial_trials"].size(), 0u);
   fs::remove_all(dir);
 }
 
