@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <unordered_map>
 
 #include "planner/common/union_find.hpp"
@@ -191,38 +192,59 @@ LinkingTest::LinkingTest(const cloth::SignedDistanceField& wearer, int max_loops
 }
 
 std::optional<Loop> LinkingTest::outside_curve(const Loop& loop) const {
-  // Samples a cell apart along each edge; one that the chord carried into
-  // the wearer is pushed out along the distance field's gradient, when it
-  // lies no deeper than a quarter of its edge's length (the sag of a chord
-  // across a curved surface), to half a cell outside.
   const double spacing = wearer_->cell_size();
   const double target = 0.5 * spacing;
+  // `point` moved out along the field's gradient to half a cell outside;
+  // nothing when it lies deeper inside than `deepest`.
+  auto pushed = [&](Vec3 point, double deepest) -> std::optional<Vec3> {
+    Vec3 gradient;
+    double value = wearer_->value_and_gradient(point, gradient);
+    if (-value > deepest) return std::nullopt;
+    for (int k = 0; k < 8 && value < target; ++k) {
+      point += (target - value) * gradient;
+      value = wearer_->value_and_gradient(point, gradient);
+    }
+    if (value <= 0) return std::nullopt;
+    return point;
+  };
   Loop curve;
-  for (std::size_t i = 0; i < loop.size(); ++i) {
+  // Samples a quarter of a cell apart along the chord from `p` to `q`.
+  auto chord_outside = [&](const Vec3& p, const Vec3& q) {
+    const int samples = 1 + static_cast<int>(std::ceil((q - p).norm() / (0.25 * spacing)));
+    for (int s = 1; s < samples; ++s) {
+      if (wearer_->value(p + (q - p) * (static_cast<double>(s) / samples)) <= 0) return false;
+    }
+    return true;
+  };
+  // Appends the way from `p` (the curve's last point) to `q`: the chord
+  // when it stays outside, else the ways to and from its middle, pushed out.
+  std::function<bool(Vec3, Vec3, double, int)> run_to = [&](Vec3 p, Vec3 q, double deepest,
+                                                            int levels) {
+    if (chord_outside(p, q)) {
+      curve.push_back(q);
+      return true;
+    }
+    if (levels == 0) return false;
+    const auto out = pushed(0.5 * (p + q), deepest);
+    return out && run_to(p, *out, deepest, levels - 1) && run_to(*out, q, deepest, levels - 1);
+  };
+  std::vector<Vec3> corners;
+  for (const Vec3& p : loop) {
+    const auto out = pushed(p, 0.0);
+    if (!out) return std::nullopt;
+    corners.push_back(*out);
+  }
+  curve.push_back(corners.front());
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    // A chord across a curved surface sags at most a quarter of its length
+    // into it; one deeper in passes through a thin part of the wearer.
     const Vec3& p = loop[i];
     const Vec3& q = loop[(i + 1) % loop.size()];
-    const double length = (q - p).norm();
-    const int samples = 1 + static_cast<int>(std::ceil(length / spacing));
-    for (int s = 0; s < samples; ++s) {
-      Vec3 point = p + (q - p) * (static_cast<double>(s) / samples);
-      Vec3 gradient;
-      double value = wearer_->value_and_gradient(point, gradient);
-      if (value < 0 && -value > 0.25 * length) return std::nullopt;
-      for (int k = 0; k < 8 && value < target; ++k) {
-        point += (target - value) * gradient;
-        value = wearer_->value_and_gradient(point, gradient);
-      }
-      if (value <= 0) return std::nullopt;
-      curve.push_back(point);
+    if (!run_to(curve.back(), corners[(i + 1) % corners.size()], 0.25 * (q - p).norm(), 12)) {
+      return std::nullopt;
     }
   }
-  // The pushed curve runs on: consecutive samples stay close, and the
-  // chord between them outside the wearer.
-  for (std::size_t i = 0; i < curve.size(); ++i) {
-    const Vec3& p = curve[i];
-    const Vec3& q = curve[(i + 1) % curve.size()];
-    if ((q - p).norm() > 3 * spacing || wearer_->value(0.5 * (p + q)) <= 0) return std::nullopt;
-  }
+  curve.pop_back();  // the first corner again
   return curve;
 }
 

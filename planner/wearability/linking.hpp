@@ -66,11 +66,12 @@ class LinkingTest {
 
   int wearer_loops() const { return static_cast<int>(loops_.size()); }
 
-  // The garment polyline `loop` as a curve outside the wearer: sampled every
-  // distance-field cell, samples that a chord carries into the wearer pushed
-  // out along the field's gradient. Nothing when a sample lies deeper than a
-  // quarter of its edge's length (a chord through a thin part of the
-  // wearer, not across a curve of it) or the pushed curve does not run on.
+  // The garment polyline `loop` as a curve outside the wearer: each vertex
+  // pushed out along the distance field's gradient to half a cell outside,
+  // and each edge followed by halving where a chord passes inside (sampled
+  // every quarter cell), the middles pushed out as well. Nothing when a point
+  // lies deeper than a quarter of its edge's length (a chord through a thin
+  // part of the wearer, not across a curve of it), or cannot be pushed out.
   std::optional<Loop> outside_curve(const Loop& loop) const;
 
  private:
