@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The linking test against simulating every test (docs/wearability.md,
+# "Linked garments"): each mesh's default cut at 100 mm along its longest
+# side (`wearknit cut`), then its wearability stage over itself twice, one
+# after the other in the same run: with the linking test (the default) and
+# with --simulate-linked. Prints a Markdown table.
+#   bench/linking.sh [BUILD_DIR]     (default build; needs ../shared)
+# Environment: MESHES, file names (default the closed shared meshes with
+# handles); OUT, the folder for the cuts (default a temporary one).
+source "$(dirname "$0")/plan_common.sh"
+MESHES=${MESHES:-"3torus-quad.obj anchor.obj double-torus-qd.obj eight.obj eight-qd.obj fertility.obj fertility-qd.obj rockerarm.obj torus.obj torus-qd.obj"}
+echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)" >&2
+rows=()
+for mesh in $MESHES; do
+  name=${mesh%.obj}
+  "$wearknit" cut "$shared/meshes/$mesh" --scale "$(scale_to_100mm "$shared/meshes/$mesh")" \
+    -o "$out/$name-cut" -q --no-pictures
+  for mode in linking simulated; do
+    dir="$out/$name-$mode"
+    rm -rf "$dir"
+    cp -r "$out/$name-cut" "$dir"
+    extra=""
+    [ "$mode" = simulated ] && extra="--simulate-linked"
+    start=$(date +%s.%N)
+    # shellcheck disable=SC2086
+    "$wearknit" wearability "$dir" --wearer "$shared/meshes/$mesh" --threads 2 --quiet \
+      $extra >/dev/null 2>"$dir.err" || true
+    wall=$(python3 -c "import time; print('%.1f' % (time.time() - $start))")
+    echo "$name $mode: ${wall} s" >&2
+    rows+=("$name:$mode:$dir:$wall")
+  done
+done
+python3 - "${rows[@]}" <<'EOF'
+import json, sys
+runs = {}
+for row in sys.argv[1:]:
+    name, mode, folder, wall = row.split(":")
+    try:
+        summary = json.load(open(folder + "/wearability.json"))["summary"]
+    except (OSError, ValueError):
+        summary = None
+    runs.setdefault(name, {})[mode] = (summary, float(wall))
+print("| mesh | arcs | tests | failed unsimulated | sewn / laced | s | simulated: tests | sewn / laced | s | ratio |")
+print("| --- | ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: |")
+for name, modes in runs.items():
+    (a, wa), (b, wb) = modes["linking"], modes["simulated"]
+    if a is None or b is None or not a.get("wearable") or not b.get("wearable"):
+        print(f"| {name} | not wearable in one of the runs |")
+        continue
+    arcs = a["sewn"] + a["laced"]
+    print(f"| {name} | {arcs} | {a['tests']} | {a['tests_linked']} | {a['sewn']} / {a['laced']} | {wa:.1f} "
+          f"| {b['tests']} | {b['sewn']} / {b['laced']} | {wb:.1f} | {wb / wa:.1f} |")
+EOF
