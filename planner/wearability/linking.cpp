@@ -218,8 +218,11 @@ std::optional<Loop> LinkingTest::outside_curve(const Loop& loop) const {
   };
   // Appends the way from `p` (the curve's last point) to `q`: the chord
   // when it stays outside, else the ways to and from its middle, pushed out.
+  // A curve that needs more points than `most` is given up.
+  const std::size_t most = 16 * loop.size() + 256;
   std::function<bool(Vec3, Vec3, double, int)> run_to = [&](Vec3 p, Vec3 q, double deepest,
                                                             int levels) {
+    if (curve.size() > most) return false;
     if (chord_outside(p, q)) {
       curve.push_back(q);
       return true;

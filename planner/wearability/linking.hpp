@@ -71,7 +71,8 @@ class LinkingTest {
   // and each edge followed by halving where a chord passes inside (sampled
   // every quarter cell), the middles pushed out as well. Nothing when a point
   // lies deeper than a quarter of its edge's length (a chord through a thin
-  // part of the wearer, not across a curve of it), or cannot be pushed out.
+  // part of the wearer, not across a curve of it) or cannot be pushed out,
+  // or when the curve needs more than 16 points per edge.
   std::optional<Loop> outside_curve(const Loop& loop) const;
 
  private:

@@ -172,6 +172,66 @@ TEST(LinkingTest, NothingIsLinkedWithABall) {
       planner::dressed(sphere_mesh(1.0, 24, 12), wearer, cloth::ClothParams{}), {})));
 }
 
+// A short open tube about the z axis, a napkin ring: radius 0.5, z from
+// -0.15 to 0.15, no caps. (A long open tube winds almost once around the
+// points on its axis, so the distance field counts them inside it, as the
+// simulation does.)
+planner::CoverMesh open_tube() {
+  planner::CoverMesh tube;
+  const int around = 32, along = 3;
+  for (int j = 0; j <= along; ++j) {
+    for (int i = 0; i < around; ++i) {
+      const double t = 2 * std::numbers::pi * i / around;
+      tube.positions.push_back({0.5 * std::cos(t), 0.5 * std::sin(t), -0.15 + 0.3 * j / along});
+    }
+  }
+  for (int j = 0; j < along; ++j) {
+    for (int i = 0; i < around; ++i) {
+      const int a = j * around + i, b = j * around + (i + 1) % around;
+      tube.faces.push_back({a, b, b + around, a + around});
+    }
+  }
+  return tube;
+}
+
+// A band of cloth along the closed polyline `path`, `width` wide across
+// `side`: one quad per segment, its one cycle along `path`.
+cloth::PolygonMesh band_along(const Loop& path, const Vec3& side, double width) {
+  cloth::PolygonMesh band;
+  const int n = static_cast<int>(path.size());
+  for (const Vec3& p : path) {
+    band.positions.push_back(p - 0.5 * width * side);
+    band.positions.push_back(p + 0.5 * width * side);
+  }
+  for (int k = 0; k < n; ++k) {
+    const int a = 2 * k, b = 2 * ((k + 1) % n);
+    band.faces.push_back({a, b, b + 1, a + 1});
+  }
+  return band;
+}
+
+TEST(LinkingTest, ARingThreadedThroughAnOpenTubeIsLinkedAndOneAroundItIsNot) {
+  // A wearer with a boundary: its curve runs around the tube. A ring through
+  // the tube and back outside it cannot come off (it would cross the wall);
+  // a ring around the tube slides off over its rim.
+  const planner::CoverMesh tube = open_tube();
+  const cloth::SignedDistanceField wearer = field_of(tube);
+  const planner::LinkingTest test(wearer);
+  EXPECT_EQ(test.wearer_loops(), 1);
+  Loop threaded;
+  auto line = [&](const Vec3& from, const Vec3& to, int steps) {
+    for (int k = 0; k < steps; ++k) threaded.push_back(from + (to - from) * (double(k) / steps));
+  };
+  line(Vec3(0, 0, -0.6), Vec3(0, 0, 0.6), 24);
+  line(Vec3(0, 0, 0.6), Vec3(1.0, 0, 0.6), 20);
+  line(Vec3(1.0, 0, 0.6), Vec3(1.0, 0, -0.6), 24);
+  line(Vec3(1.0, 0, -0.6), Vec3(0, 0, -0.6), 20);
+  EXPECT_TRUE(test.linked(band_along(threaded, Vec3::UnitY(), 0.05)));
+  const Loop around =
+      sampled(48, [](double t) { return Vec3(0.8 * std::cos(t), 0.8 * std::sin(t), 0); });
+  EXPECT_FALSE(test.linked(band_along(around, Vec3::UnitZ(), 0.05)));
+}
+
 TEST(LinkingTest, AGarmentCurveInsideTheWearerIsNotTrusted) {
   // The torus's own surface, not dressed: its curves touch the wearer, so no
   // linking number is taken from them.
