@@ -112,6 +112,18 @@ struct Running {
 // Records a row's end and says so.
 void finish_row(const fs::path& dir, const Running& r, int status, std::size_t done,
                 std::size_t total, bool quiet, Context& context, int* failed) {
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    if (signal == SIGTERM || signal == SIGINT || signal == SIGHUP || signal == SIGKILL) {
+      // Stopped from outside (scancel, Ctrl-C, a hang-up, a time limit), not
+      // failed: the row keeps its "running" state, which the summary calls
+      // unfinished, and the next batch runs it again.
+      context.out << '[' << done << '/' << total << "] " << r.row->name << " stopped by signal "
+                  << signal << ", unfinished\n"
+                  << std::flush;
+      return;
+    }
+  }
   RowState state;
   state.fingerprint = r.fingerprint;
   state.started = r.started;

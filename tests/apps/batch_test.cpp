@@ -6,13 +6,17 @@
 #include "apps/wearknit/batch.hpp"
 
 #include <gtest/gtest.h>
+#include <signal.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "planner/mesh/mesh_io.hpp"
 #include "planner/mesh/shapes.hpp"
@@ -211,6 +215,58 @@ TEST_F(BatchRunTest, KilledMidwayItFinishesTheRestAndKeepsWhatWasDone) {
   const json s = summary();
   EXPECT_EQ(status(s, "small"), "ok");
   EXPECT_EQ(status(s, "large"), "ok");
+}
+
+// The process whose command line holds `text`, other than this one; -1 when
+// there is none.
+pid_t process_with(const std::string& text) {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+    std::string line((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::replace(line.begin(), line.end(), '\0', ' ');
+    const pid_t pid = static_cast<pid_t>(std::stol(name));
+    if (pid != ::getpid() && line.find(text) != std::string::npos) return pid;
+  }
+  return -1;
+}
+
+TEST_F(BatchRunTest, ARowStoppedFromOutsideIsUnfinishedNotFailed) {
+  // The first row's plan is sent SIGTERM while the batch goes on (as
+  // scancel or a hang-up would): the row is left unfinished, not failed,
+  // and the next batch runs it again.
+  write(manifest_,
+        "name,garment,wearer,size_mm,wear_trials,resolution,cloth_vertices\n"
+        "small,garment.obj,wearer.obj,40,1,32,0\n"
+        "large,garment.obj,wearer.obj,45,1,32,0\n");
+  const std::string command =
+      "batch '" + manifest_.string() + "' -o '" + out_.string() + "' --jobs 1";
+  CommandResult first;
+  std::thread batch([&] { first = run_wearknit(command); });
+  const std::string child = "-o " + (out_ / "small").string();
+  bool stopped = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+  while (!stopped && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (!fs::exists(out_ / "small" / "plan.log")) continue;
+    const pid_t pid = process_with(child);
+    stopped = pid > 0 && ::kill(pid, SIGTERM) == 0;
+  }
+  batch.join();
+  ASSERT_TRUE(stopped);
+  EXPECT_NE(first.out.find("small stopped by signal 15, unfinished"), std::string::npos)
+      << first.out;
+  EXPECT_NE(first.out.find("large ok"), std::string::npos) << first.out;
+  json s = summary();
+  EXPECT_EQ(status(s, "small"), "unfinished");
+  EXPECT_EQ(status(s, "large"), "ok");
+  const auto second = run_wearknit(command);
+  EXPECT_EQ(second.exit_code, 0) << second.out << second.err;
+  EXPECT_NE(second.out.find("small ok"), std::string::npos) << second.out;
+  EXPECT_NE(second.out.find("skip large: done"), std::string::npos) << second.out;
+  s = summary();
+  EXPECT_EQ(status(s, "small"), "ok");
 }
 
 }  // namespace
