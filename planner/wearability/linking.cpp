@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "planner/common/union_find.hpp"
+#include "planner/mesh/soup.hpp"
 #include "planner/wearability/wearability.hpp"
 
 namespace planner {
@@ -30,9 +31,8 @@ std::vector<std::vector<int>> homology_cycles(int vertex_count,
     for (std::size_t i = 0; i < face.size(); ++i) {
       const int a = face[i], b = face[(i + 1) % face.size()];
       if (a == b) continue;
-      const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) |
-                                static_cast<std::uint32_t>(std::max(a, b));
-      const auto [it, inserted] = edge_of.emplace(key, static_cast<int>(edges.size()));
+      const auto [lo, hi] = undirected_edge(a, b);
+      const auto [it, inserted] = edge_of.emplace(pair_key(lo, hi), static_cast<int>(edges.size()));
       if (inserted) {
         edges.push_back({a, b, {}, false});
         around[static_cast<std::size_t>(a)].emplace_back(b, it->second);
@@ -263,7 +263,7 @@ std::optional<LinkingTest::Linked> LinkingTest::linked(const cloth::PolygonMesh&
       if (!first || *first == 0) continue;
       const auto second = linking_number(*curve, wearer_loop, kViews[1]);
       if (second && *second == *first) {
-        return Linked{static_cast<int>(cycle.size()), *first};
+        return Linked{*first};
       }
     }
   }

@@ -55,8 +55,7 @@ class LinkingTest {
   explicit LinkingTest(const cloth::SignedDistanceField& wearer, int max_loops = 64);
 
   struct Linked {
-    int garment_loop_vertices = 0;  // the garment curve found
-    int linking_number = 0;         // with one of the wearer's curves
+    int linking_number = 0;  // of the garment curve found with one of the wearer's curves
   };
   // A curve of `garment` (a configuration from open_cuts, dressed outside
   // the wearer) linked with the wearer; nothing when none is found. Each

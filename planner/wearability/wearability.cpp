@@ -473,8 +473,11 @@ EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceFi
     params.record->add(key, fresh);
     return fresh;
   };
-  const std::optional<LinkingTest> linking =
-      params.linking ? std::optional<LinkingTest>(std::in_place, wearer) : std::nullopt;
+  // None for a wearer without handles: nothing can be linked with it, and
+  // no test needs the configuration split for it.
+  std::optional<LinkingTest> linking;
+  if (params.linking) linking.emplace(wearer);
+  if (linking && linking->wearer_loops() == 0) linking.reset();
   // A test failed by the linking test, else inferred from an earlier run's
   // pass, else simulate_test. The linking test comes first: a linked
   // configuration cannot come off even if a simulation let it through.
