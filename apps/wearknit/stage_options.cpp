@@ -145,7 +145,8 @@ void add_wearability_options(po::options_description& options, WearabilityOption
                         "wearability: K trials per test, each with its own global-force "
                         "directions")(
       "runs", po::value<int>(&p.runs)->default_value(1),
-      "wearability: R eliminations with different arc orders (probability of lacing, Fig. 18)")(
+      "wearability: R eliminations with different arc orders (probability of lacing, Fig. 18; "
+      "the runs after the first take random orders)")(
       "recut-limit", po::value<int>(&p.recut_limit)->default_value(p.recut_limit),
       "wearability: re-cuts with other seeds when the garment with every cut open is not "
       "wearable (§5)")(
@@ -169,7 +170,10 @@ void add_wearability_options(po::options_description& options, WearabilityOption
       "simulate-linked",
       "wearability: simulate every test, also of a garment with a curve linked around a "
       "handle of the wearer, which cannot come off (by default such a test fails without "
-      "a simulation)");
+      "a simulation)")(
+      "arc-order", po::value<std::string>(&wear.arc_order)->default_value("opening"),
+      "wearability: the order the elimination takes the arcs in: opening (those whose sides "
+      "parted least as the garment came off with every cut open first) or random (§5)");
 }
 
 void add_wearer_unit_options(po::options_description& options, WearerUnitOptions& wearer) {
@@ -210,6 +214,13 @@ std::string check_wearability_options(const po::variables_map& values, Wearabili
   }
   wear.params.test.group_testing = values.count("one-at-a-time") == 0;
   wear.params.test.linking = values.count("simulate-linked") == 0;
+  if (wear.arc_order == "opening") {
+    wear.params.test.order = planner::ArcOrder::Opening;
+  } else if (wear.arc_order == "random") {
+    wear.params.test.order = planner::ArcOrder::Random;
+  } else {
+    return "--arc-order takes opening or random, not '" + wear.arc_order + "'";
+  }
   return {};
 }
 

@@ -38,6 +38,7 @@ std::string check_stitch_mesh_options(const boost::program_options::variables_ma
 
 struct WearabilityOptions {
   planner::WearabilityStageParams params;
+  std::string arc_order;  // --arc-order, read into params by check_wearability_options
 };
 // `trials_name`: "trials" for the verb, "wear-trials" for the plan.
 // --wearer-units and --wearer-scale (wearability, assembly): the wearer's

@@ -14,7 +14,7 @@ namespace planner {
 
 namespace {
 
-constexpr const char* kMagic = "wearknit wearability journal 2 ";
+constexpr const char* kMagic = "wearknit wearability journal 3 ";
 
 std::string hex(std::uint64_t value) {
   std::ostringstream out;
@@ -64,6 +64,8 @@ std::string journal_line(std::uint64_t key, const TestResult& result) {
         << ' ' << t.caught_at.y() << ' ' << t.caught_at.z() << ' ' << t.caught_radius << ' '
         << t.cloth_vertices;
   }
+  out << ' ' << result.openings.size();
+  for (const double opening : result.openings) out << ' ' << opening;
   const std::string body = out.str();
   return body + ' ' + hex(fingerprint(body));
 }
@@ -94,6 +96,12 @@ std::optional<std::pair<std::uint64_t, TestResult>> parse_journal_line(const std
         !(in >> t.caught_radius >> t.cloth_vertices)) {
       return std::nullopt;
     }
+  }
+  std::size_t openings;
+  if (!(in >> openings) || openings > 1'000'000) return std::nullopt;
+  result.openings.resize(openings);
+  for (double& opening : result.openings) {
+    if (!(in >> opening)) return std::nullopt;
   }
   std::string rest;
   if (in >> rest) return std::nullopt;

@@ -77,6 +77,10 @@ std::uint64_t test_key(std::uint64_t garment, const std::vector<bool>& open, std
   return derive(fingerprint(bits, garment), seed, open.size());
 }
 
+const char* to_string(ArcOrder order) {
+  return order == ArcOrder::Opening ? "opening" : "random";
+}
+
 const char* to_string(Label label) {
   return label == Label::Sew ? "sew" : "lace";
 }
@@ -366,10 +370,77 @@ namespace {
 // after the first failure are stopped and not recorded. Either way the
 // trials recorded all ran to their end, so the record is the same for any
 // thread count.
+// The two sides of every edge of the open arcs in the split garment: per
+// arc, four garment vertices per edge (one side's ends, then the other's).
+std::vector<std::vector<std::array<int, 4>>> arc_sides(const CoverMesh& mesh,
+                                                       const std::vector<bool>& open,
+                                                       const cloth::PolygonMesh& garment) {
+  std::unordered_map<std::uint64_t, std::array<int, 2>> half_edge;  // (from,to) → face, corner
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const std::uint64_t key = (static_cast<std::uint64_t>(face[i]) << 32) |
+                                static_cast<std::uint32_t>(face[(i + 1) % face.size()]);
+      half_edge[key] = {static_cast<int>(f), static_cast<int>(i)};
+    }
+  }
+  auto corner = [&](const std::array<int, 2>& at, int next) {
+    const auto& face = garment.faces[at[0]];
+    return face[(at[1] + next) % face.size()];
+  };
+  std::vector<std::vector<std::array<int, 4>>> sides(mesh.arcs.size());
+  for (std::size_t a = 0; a < mesh.arcs.size(); ++a) {
+    if (a >= open.size() || !open[a]) continue;
+    for (const auto& [u, w] : mesh.arcs[a].edges) {
+      const auto one =
+          half_edge.find((static_cast<std::uint64_t>(u) << 32) | static_cast<std::uint32_t>(w));
+      const auto other =
+          half_edge.find((static_cast<std::uint64_t>(w) << 32) | static_cast<std::uint32_t>(u));
+      if (one == half_edge.end() || other == half_edge.end()) continue;
+      sides[a].push_back({corner(one->second, 0), corner(one->second, 1), corner(other->second, 1),
+                          corner(other->second, 0)});
+    }
+  }
+  return sides;
+}
+
+// Per edge of the open arcs (sides' order), the widest its two sides have
+// parted so far while one of them is still within `on` of the wearer: how
+// far the garment opened the arc to pass the wearer, not how it flaps once
+// it is off.
+void widen_gaps(const std::vector<std::vector<std::array<int, 4>>>& sides,
+                const std::vector<Vec3>& x, const cloth::SignedDistanceField& wearer, double on,
+                std::vector<double>& gaps) {
+  std::size_t e = 0;
+  for (const auto& arc : sides) {
+    for (const auto& [p, q, r, s] : arc) {
+      const Vec3 one = 0.5 * (x[p] + x[q]), other = 0.5 * (x[r] + x[s]);
+      const double gap = (one - other).norm();
+      if (gap > gaps[e] && std::min(wearer.value(one), wearer.value(other)) < on) gaps[e] = gap;
+      ++e;
+    }
+  }
+}
+
+// Per arc, the mean of its edges' gaps (widen_gaps).
+std::vector<double> arc_openings(const std::vector<std::vector<std::array<int, 4>>>& sides,
+                                 const std::vector<double>& gaps) {
+  std::vector<double> openings(sides.size(), 0.0);
+  std::size_t e = 0;
+  for (std::size_t a = 0; a < sides.size(); ++a) {
+    double sum = 0;
+    for (std::size_t k = 0; k < sides[a].size(); ++k) sum += gaps[e++];
+    if (!sides[a].empty()) openings[a] = sum / static_cast<double>(sides[a].size());
+  }
+  return openings;
+}
+
 TestResult run_trials(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
                       const cloth::SignedDistanceField& wearer, const WearabilityParams& params,
-                      std::uint64_t seed, int count, bool every) {
+                      std::uint64_t seed, int count, bool every, bool measure_openings = false) {
   const cloth::PolygonMesh garment = open_cuts(dressed_mesh, open);
+  std::vector<std::vector<std::array<int, 4>>> sides;
+  if (measure_openings) sides = arc_sides(dressed_mesh, open, garment);
   const int trials = std::max(count, 1);
   const int workers = std::min(cloth::resolve_threads(params.threads), trials);
   cloth::ClothParams simulation = params.cloth;
@@ -377,6 +448,11 @@ TestResult run_trials(const CoverMesh& dressed_mesh, const std::vector<bool>& op
 
   std::vector<TrialOutcome> outcomes(trials);
   std::vector<std::uint64_t> steps(trials, 0), projections(trials, 0);
+  std::size_t side_edges = 0;
+  for (const auto& arc : sides) side_edges += arc.size();
+  std::vector<std::vector<double>> gaps(measure_openings ? trials : 0,
+                                        std::vector<double>(side_edges, 0.0));
+  const double on = params.cloth.success_distance * wearer.scale();
   // The first trial whose outcome decides the test: a success (one of
   // them) or a failure (every one).
   std::atomic<int> decisive{trials};
@@ -387,7 +463,10 @@ TestResult run_trials(const CoverMesh& dressed_mesh, const std::vector<bool>& op
     outcome.seed = derive(seed, static_cast<std::uint64_t>(t));
     cloth::ClothSimulation sim(garment, wearer, simulation);
     // A trial after the decisive one cannot change the answer: stop it.
-    const auto result = sim.run(outcome.seed, [&](int, const cloth::ClothSimulation&) {
+    const auto result = sim.run(outcome.seed, [&](int step, const cloth::ClothSimulation& state) {
+      if (measure_openings && step % simulation.check_every == 0) {
+        widen_gaps(sides, state.positions(), wearer, on, gaps[t]);
+      }
       return decisive.load(std::memory_order_relaxed) > t;
     });
     outcome.success = result.success;
@@ -411,6 +490,7 @@ TestResult run_trials(const CoverMesh& dressed_mesh, const std::vector<bool>& op
   result.wearable = every ? first == trials : first < trials;
   const int recorded = first < trials ? first + 1 : trials;
   result.trials.assign(outcomes.begin(), outcomes.begin() + recorded);
+  if (measure_openings) result.openings = arc_openings(sides, gaps[std::min(first, trials - 1)]);
   for (int t = 0; t < trials; ++t) {
     result.steps += steps[t];
     result.projections += projections[t];
@@ -422,8 +502,8 @@ TestResult run_trials(const CoverMesh& dressed_mesh, const std::vector<bool>& op
 
 TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
                             const cloth::SignedDistanceField& wearer,
-                            const WearabilityParams& params, std::uint64_t seed) {
-  return run_trials(dressed_mesh, open, wearer, params, seed, params.trials, false);
+                            const WearabilityParams& params, std::uint64_t seed, bool openings) {
+  return run_trials(dressed_mesh, open, wearer, params, seed, params.trials, false, openings);
 }
 
 TestResult test_every_trial(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
@@ -462,14 +542,18 @@ EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceFi
   if (progress) progress(report);
   const std::uint64_t garment_key = params.record != nullptr ? fingerprint(garment) : 0;
   // A test from the record when it holds one, else simulated and recorded.
-  auto simulate_test = [&](std::uint64_t seed) {
-    if (params.record == nullptr) return test_wearability(garment, open, wearer, params, seed);
-    const std::uint64_t key = test_key(garment_key, open, seed);
+  // A test that measures the openings is recorded under its own key.
+  auto simulate_test = [&](std::uint64_t seed, bool openings) {
+    if (params.record == nullptr) {
+      return test_wearability(garment, open, wearer, params, seed, openings);
+    }
+    std::uint64_t key = test_key(garment_key, open, seed);
+    if (openings) key = mix64(key ^ 0x4F50454E494E4753ULL);
     if (auto known = params.record->find(key)) {
       ++result.replayed;
       return *known;
     }
-    TestResult fresh = test_wearability(garment, open, wearer, params, seed);
+    TestResult fresh = test_wearability(garment, open, wearer, params, seed, openings);
     params.record->add(key, fresh);
     return fresh;
   };
@@ -481,7 +565,7 @@ EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceFi
   // A test failed by the linking test, else inferred from an earlier run's
   // pass, else simulate_test. The linking test comes first: a linked
   // configuration cannot come off even if a simulation let it through.
-  auto run_test = [&](std::uint64_t seed) {
+  auto run_test = [&](std::uint64_t seed, bool openings = false) {
     if (linking && linking->linked(open_cuts(garment, open))) {
       ++result.linked;
       TestResult known;
@@ -495,16 +579,22 @@ EliminationResult eliminate(const CoverMesh& mesh, const cloth::SignedDistanceFi
       known.inferred = true;
       return known;
     }
-    TestResult fresh = simulate_test(seed);
+    TestResult fresh = simulate_test(seed, openings);
     if (passed != nullptr && fresh.wearable) passed->add(open);
     return fresh;
   };
   // §5: first check that the garment with every cut open is wearable.
-  result.initial = run_test(derive(run_seed, 0));
+  const bool by_opening = params.order == ArcOrder::Opening && run == 0;
+  result.initial = run_test(derive(run_seed, 0), by_opening);
   result.steps += result.initial.steps;
   result.projections += result.initial.projections;
   if (result.initial.wearable) {
     result.order = random_order(arcs, derive(run_seed, 1));
+    const std::vector<double>& openings = result.initial.openings;
+    if (by_opening && openings.size() == static_cast<std::size_t>(arcs)) {
+      std::stable_sort(result.order.begin(), result.order.end(),
+                       [&](int a, int b) { return openings[a] < openings[b]; });
+    }
     int position = 0;
     // Runs one test of the garment with the arcs of order[first, last)
     // closed tentatively; a group's seed differs from any single arc's.

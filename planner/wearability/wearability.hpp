@@ -129,6 +129,21 @@ inline cloth::ClothParams elimination_cloth() {
   return params;
 }
 
+// The order in which the elimination takes the arcs.
+enum class ArcOrder : std::uint8_t {
+  // §5: a random order, drawn from the seed.
+  Random,
+  // The arcs whose two sides parted least while the garment came off with
+  // every cut open first (TestResult::openings), ties in the random order:
+  // runs of arcs the garment does not need open come first and are sewn
+  // together, the arcs it opens to come off are tested last
+  // (docs/wearability.md, "The order of the arcs"). A heuristic: the labels
+  // are those of one particular order of §5's elimination. Runs after the
+  // first of a study (study_lacing) take random orders.
+  Opening,
+};
+const char* to_string(ArcOrder order);
+
 struct WearabilityParams {
   // Every trial's simulation (its `threads` is ignored).
   cloth::ClothParams cloth = elimination_cloth();
@@ -154,6 +169,7 @@ struct WearabilityParams {
   // the garment winds around a handle of the wearer (planner/wearability/
   // linking.hpp): it cannot come off, whatever the trials would find.
   bool linking = true;
+  ArcOrder order = ArcOrder::Opening;
 };
 
 // The open-arc sets of configurations that came off, shared by the runs of
@@ -194,6 +210,13 @@ struct TestResult {
   // Not simulated: a curve of the garment is linked with the wearer
   // (WearabilityParams::linking), so it cannot come off.
   bool linked = false;
+  // Per arc, when measured (the elimination's initial test with
+  // ArcOrder::Opening): how far its two sides parted in the decisive trial
+  // while the garment was on the wearer. Per edge, the largest distance
+  // between the midpoints of its two sides at a moment when one of them was
+  // within the success distance of the wearer; the mean over the arc's
+  // edges, in mesh units. Empty otherwise.
+  std::vector<double> openings;
 };
 
 enum class Label : std::uint8_t { Lace, Sew };
@@ -249,9 +272,11 @@ std::uint64_t fingerprint(const CoverMesh& mesh);
 
 // One wearability test of the configuration `open` (mesh already dressed).
 // `seed` picks the trials' direction seeds.
+// With `openings`, the result's openings are measured (TestResult::openings).
 TestResult test_wearability(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
                             const cloth::SignedDistanceField& wearer,
-                            const WearabilityParams& params, std::uint64_t seed);
+                            const WearabilityParams& params, std::uint64_t seed,
+                            bool openings = false);
 
 // The final check's test (planner/wearability/wearability_stage.hpp): the
 // configuration passes only when every one of `trials` trials strips the

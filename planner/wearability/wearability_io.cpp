@@ -183,6 +183,7 @@ json summary_json(const Wearability& result) {
       {"trials_per_test", params.trials},
       {"group_testing", params.group_testing},
       {"linking_test", params.linking},
+      {"arc_order", to_string(params.order)},
       {"seed", params.seed},
       {"max_steps", params.cloth.max_steps},
       {"switch_steps", params.cloth.switch_steps},
@@ -240,6 +241,9 @@ json wearability_json(const Wearability& result, std::uint64_t labelled_cut_id) 
                    {"wearable_when_sewn", arc.test.wearable},
                    {"tested_with", arc.test.group - 1},
                    {"trials", trials_json(arc.test.trials)}};
+    // How far its sides parted as the garment came off with every cut open
+    // (ArcOrder::Opening).
+    if (a < run->initial.openings.size()) detail["opening_mm"] = run->initial.openings[a];
     if (arc.reopened) detail["laced_by_final_check"] = true;
     if (arc.test.inferred) detail["inferred_from_earlier_run"] = true;
     if (arc.test.linked) detail["linked_with_wearer"] = true;

@@ -30,6 +30,8 @@ planner::TestResult sample(bool wearable, int trials) {
     outcome.min_distance = 0.1 / 3.0 + t * 1e-17;
     result.trials.push_back(outcome);
   }
+  // An initial test measured for the opening order.
+  if (trials == 3) result.openings = {1.0 / 3.0, 0.0, 12.5 + 1e-13};
   return result;
 }
 
@@ -45,10 +47,12 @@ void expect_same(const planner::TestResult& a, const planner::TestResult& b) {
     EXPECT_EQ(a.trials[t].stalled, b.trials[t].stalled);
     EXPECT_EQ(a.trials[t].min_distance, b.trials[t].min_distance) << "read back exactly";
   }
+  EXPECT_EQ(a.openings, b.openings) << "read back exactly";
 }
 
 TEST(WearabilityJournalTest, ALineReadsBackExactlyAndMalformedLinesAreRejected) {
   const auto test = sample(true, 3);
+  ASSERT_EQ(test.openings.size(), 3u);
   const std::string line = planner::journal_line(0xABCDEF0123456789ULL, test);
   const auto parsed = planner::parse_journal_line(line);
   ASSERT_TRUE(parsed.has_value()) << line;
@@ -64,14 +68,17 @@ TEST(WearabilityJournalTest, ALineReadsBackExactlyAndMalformedLinesAreRejected) 
   changed[20] = changed[20] == '1' ? '2' : '1';
   EXPECT_FALSE(planner::parse_journal_line(changed).has_value());
   // A well-formed body with a right check but a bad flag is still refused.
-  const std::string bad_flag = "abcdef0123456789 2 1 1 0";
+  const std::string bad_flag = "abcdef0123456789 2 1 1 0 0";
   const auto check = [](const std::string& body) {
     std::ostringstream out;
     out << std::hex << std::setw(16) << std::setfill('0') << planner::fingerprint(body);
     return body + ' ' + out.str();
   };
   EXPECT_FALSE(planner::parse_journal_line(check(bad_flag)).has_value());
-  EXPECT_TRUE(planner::parse_journal_line(check("abcdef0123456789 1 1 1 0")).has_value());
+  EXPECT_TRUE(planner::parse_journal_line(check("abcdef0123456789 1 1 1 0 0")).has_value());
+  // Without the count of openings, or with fewer openings than it says.
+  EXPECT_FALSE(planner::parse_journal_line(check("abcdef0123456789 1 1 1 0")).has_value());
+  EXPECT_FALSE(planner::parse_journal_line(check("abcdef0123456789 1 1 1 0 2 0.5")).has_value());
 }
 
 TEST(WearabilityJournalTest, KeepsTheTestsOfTheSameContextOnly) {
@@ -106,7 +113,7 @@ TEST(WearabilityJournalTest, KeepsTheTestsOfTheSameContextOnly) {
     EXPECT_EQ(journal.loaded(), 0);
     EXPECT_FALSE(journal.find(5).has_value());
   }
-  EXPECT_EQ(read_file(path), "wearknit wearability journal 2 0000000000000008\n");
+  EXPECT_EQ(read_file(path), "wearknit wearability journal 3 0000000000000008\n");
   fs::remove_all(dir);
 }
 

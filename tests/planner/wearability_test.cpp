@@ -206,6 +206,57 @@ TEST(WearabilityTest, TrialRecordDoesNotDependOnThreads) {
   }
 }
 
+TEST(WearabilityTest, OpeningsMeasureHowFarTheSidesOfEachArcPart) {
+  // The torus cover cut into a disc, every arc open.
+  const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  auto params = test_params();
+  const CoverMesh dressed = planner::dressed(cover, torus_field(), params.cloth);
+  std::vector<bool> open(cover.arcs.size(), true);
+  EXPECT_TRUE(planner::test_wearability(dressed, open, torus_field(), params, 3).openings.empty())
+      << "measured only when asked";
+  params.threads = 1;
+  const auto one = planner::test_wearability(dressed, open, torus_field(), params, 3, true);
+  params.threads = 2;
+  const auto two = planner::test_wearability(dressed, open, torus_field(), params, 3, true);
+  ASSERT_TRUE(one.wearable);
+  ASSERT_EQ(one.openings.size(), cover.arcs.size());
+  EXPECT_EQ(one.openings, two.openings) << "the decisive trial's, whatever the threads";
+  for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
+    // Every arc of the disc parts as it comes off; none by more than the
+    // cloth can stretch across the torus (its outer diameter is 2.8).
+    EXPECT_GT(one.openings[a], 0.1) << cover.arcs[a].name;
+    EXPECT_LT(one.openings[a], 2.8 * 1.5) << cover.arcs[a].name;
+  }
+  // A closed arc does not part.
+  open[0] = false;
+  const auto sewn = planner::test_wearability(dressed, open, torus_field(), params, 3, true);
+  ASSERT_EQ(sewn.openings.size(), cover.arcs.size());
+  EXPECT_EQ(sewn.openings[0], 0.0);
+  EXPECT_GT(sewn.openings[1], 0.0);
+}
+
+TEST(WearabilityTest, TheOpeningOrderTakesTheArcsThatPartLeastFirst) {
+  const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  auto params = test_params();
+  params.reuse_passes = false;
+  ASSERT_EQ(params.order, planner::ArcOrder::Opening) << "the default";
+  const auto study = planner::study_lacing(cover, torus_field(), params, 2);
+  ASSERT_EQ(study.wearable_runs, 2);
+  const auto& first = study.runs[0];
+  ASSERT_EQ(first.initial.openings.size(), cover.arcs.size());
+  ASSERT_EQ(first.order.size(), cover.arcs.size());
+  for (std::size_t p = 0; p + 1 < first.order.size(); ++p) {
+    EXPECT_LE(first.initial.openings[first.order[p]], first.initial.openings[first.order[p + 1]]);
+  }
+  EXPECT_EQ(first.open(), (std::vector<bool>{false, true, true, true, true}));
+  // Later runs of a study take §5's random orders, as a random run would.
+  params.order = planner::ArcOrder::Random;
+  const auto random = planner::eliminate(cover, torus_field(), params, 1);
+  EXPECT_TRUE(random.initial.openings.empty());
+  EXPECT_TRUE(study.runs[1].initial.openings.empty());
+  EXPECT_EQ(study.runs[1].order, random.order);
+}
+
 // --- the elimination and the lacing study ----------------------------------
 
 TEST(WearabilityTest, CapArcsAreAllSewnInEveryRun) {

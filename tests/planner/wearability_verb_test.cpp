@@ -70,6 +70,12 @@ TEST(WearabilityVerbTest, LabelsTorusCoverArcsAndWritesPictureAndFrames) {
             std::string::npos)
       << result.out;
   EXPECT_EQ(cuts["arcs"][0]["kept"], "as written");
+  // The arcs were taken in the opening order: each has how far its sides
+  // parted with every cut open.
+  EXPECT_EQ(cuts["wearability"]["arc_order"], "opening");
+  for (const auto& arc : cuts["arcs"]) {
+    EXPECT_GT(arc["wearability"]["opening_mm"].get<double>(), 0.0);
+  }
   EXPECT_EQ(cuts["wearability"]["wearable"], true);
   // The final check ran on the labels at a finer cloth, every trial off;
   // report.json records it.
@@ -359,6 +365,13 @@ TEST(WearabilityVerbTest, BadFolderGivesDiagnostics) {
   result = run_wearknit("wearability " + dir.string());
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.err.find("--wearer"), std::string::npos) << result.err;
+
+  result = run_wearknit("wearability " + dir.string() + " --wearer " + (dir / "w.obj").string() +
+                        " --arc-order sideways");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.err.find("--arc-order takes opening or random, not 'sideways'"),
+            std::string::npos)
+      << result.err;
   fs::remove_all(dir);
 }
 

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# The elimination's arc order (docs/wearability.md, "The order of the
+# arcs"): each mesh's default cut at 100 mm along its longest side
+# (`wearknit cut`), then its wearability stage over itself twice, one after
+# the other in the same run: with --arc-order opening (the default) and
+# with --arc-order random (§5). Prints a Markdown table.
+#   bench/arc_order.sh [BUILD_DIR]     (default build; needs ../shared)
+# Environment: MESHES, file names (default the closed shared meshes whose
+# stage took longest against their knit branch); OUT, the folder for the
+# cuts (default a temporary one).
+source "$(dirname "$0")/plan_common.sh"
+MESHES=${MESHES:-"man.obj horse-quad.obj armadillo-qd.obj teddy-quad.obj gargoyle.obj armadillo.obj 3torus-quad.obj fertility.obj bunny.obj anchor.obj"}
+echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)" >&2
+rows=()
+for mesh in $MESHES; do
+  name=${mesh%.obj}
+  "$wearknit" cut "$shared/meshes/$mesh" --scale "$(scale_to_100mm "$shared/meshes/$mesh")" \
+    -o "$out/$name-cut" -q --no-pictures
+  for mode in opening random; do
+    dir="$out/$name-$mode"
+    rm -rf "$dir"
+    cp -r "$out/$name-cut" "$dir"
+    start=$(date +%s.%N)
+    "$wearknit" wearability "$dir" --wearer "$shared/meshes/$mesh" --threads 2 --quiet \
+      --arc-order "$mode" >/dev/null 2>"$dir.err" || true
+    wall=$(python3 -c "import time; print('%.1f' % (time.time() - $start))")
+    echo "$name $mode: ${wall} s" >&2
+    rows+=("$name:$mode:$dir:$wall")
+  done
+done
+python3 - "${rows[@]}" <<'EOF2'
+import json, sys
+runs = {}
+for row in sys.argv[1:]:
+    name, mode, folder, wall = row.split(":")
+    try:
+        summary = json.load(open(folder + "/wearability.json"))["summary"]
+    except (OSError, ValueError):
+        summary = None
+    runs.setdefault(name, {})[mode] = (summary, float(wall))
+def cells(s, wall):
+    check = s["final_check"]
+    return f"{s['tests']} | {s['sewn']} / {s['laced']} | {check['laced']} | {wall:.1f}"
+print("| mesh | arcs | opening: tests | sewn / laced | laced by the check | s "
+      "| random: tests | sewn / laced | laced by the check | s | ratio |")
+print("| --- | ---: | ---: | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: |")
+total = [0.0, 0.0]
+for name, modes in runs.items():
+    (a, wa), (b, wb) = modes["opening"], modes["random"]
+    if a is None or b is None or not a.get("wearable") or not b.get("wearable"):
+        print(f"| {name} | not wearable in one of the runs |")
+        continue
+    total[0] += wa
+    total[1] += wb
+    arcs = a["sewn"] + a["laced"]
+    print(f"| {name} | {arcs} | {cells(a, wa)} | {cells(b, wb)} | {wb / wa:.2f} |")
+print(f"\nTotal: {total[0]:.1f} s with the opening order, {total[1]:.1f} s with random orders "
+      f"({total[1] / max(total[0], 1e-9):.2f}).")
+EOF2
