@@ -9,25 +9,10 @@
 # stage took longest against their knit branch); OUT, the folder for the
 # cuts (default a temporary one).
 source "$(dirname "$0")/plan_common.sh"
+source bench/wearability_pairs.sh
 MESHES=${MESHES:-"man.obj horse-quad.obj armadillo-qd.obj teddy-quad.obj gargoyle.obj armadillo.obj 3torus-quad.obj fertility.obj bunny.obj anchor.obj"}
 echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)" >&2
-rows=()
-for mesh in $MESHES; do
-  name=${mesh%.obj}
-  "$wearknit" cut "$shared/meshes/$mesh" --scale "$(scale_to_100mm "$shared/meshes/$mesh")" \
-    -o "$out/$name-cut" -q --no-pictures
-  for mode in opening random; do
-    dir="$out/$name-$mode"
-    rm -rf "$dir"
-    cp -r "$out/$name-cut" "$dir"
-    start=$(date +%s.%N)
-    "$wearknit" wearability "$dir" --wearer "$shared/meshes/$mesh" --threads 2 --quiet \
-      --arc-order "$mode" >/dev/null 2>"$dir.err" || true
-    wall=$(python3 -c "import time; print('%.1f' % (time.time() - $start))")
-    echo "$name $mode: ${wall} s" >&2
-    rows+=("$name:$mode:$dir:$wall")
-  done
-done
+wearability_modes "opening=--arc-order opening" "random=--arc-order random"
 python3 - "${rows[@]}" <<'EOF2'
 import json, sys
 runs = {}

@@ -8,28 +8,10 @@
 # Environment: MESHES, file names (default the closed shared meshes with
 # handles); OUT, the folder for the cuts (default a temporary one).
 source "$(dirname "$0")/plan_common.sh"
+source bench/wearability_pairs.sh
 MESHES=${MESHES:-"3torus-quad.obj anchor.obj double-torus-qd.obj eight.obj eight-qd.obj fertility.obj fertility-qd.obj rockerarm.obj torus.obj torus-qd.obj"}
 echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)" >&2
-rows=()
-for mesh in $MESHES; do
-  name=${mesh%.obj}
-  "$wearknit" cut "$shared/meshes/$mesh" --scale "$(scale_to_100mm "$shared/meshes/$mesh")" \
-    -o "$out/$name-cut" -q --no-pictures
-  for mode in linking simulated; do
-    dir="$out/$name-$mode"
-    rm -rf "$dir"
-    cp -r "$out/$name-cut" "$dir"
-    extra=""
-    [ "$mode" = simulated ] && extra="--simulate-linked"
-    start=$(date +%s.%N)
-    # shellcheck disable=SC2086
-    "$wearknit" wearability "$dir" --wearer "$shared/meshes/$mesh" --threads 2 --quiet \
-      $extra >/dev/null 2>"$dir.err" || true
-    wall=$(python3 -c "import time; print('%.1f' % (time.time() - $start))")
-    echo "$name $mode: ${wall} s" >&2
-    rows+=("$name:$mode:$dir:$wall")
-  done
-done
+wearability_modes "linking=" "simulated=--simulate-linked"
 python3 - "${rows[@]}" <<'EOF'
 import json, sys
 runs = {}
