@@ -11,18 +11,12 @@
 source "$(dirname "$0")/plan_common.sh"
 source bench/wearability_pairs.sh
 MESHES=${MESHES:-"man.obj horse-quad.obj armadillo-qd.obj teddy-quad.obj gargoyle.obj armadillo.obj 3torus-quad.obj fertility.obj bunny.obj anchor.obj"}
-echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)" >&2
 wearability_modes "opening=--arc-order opening" "random=--arc-order random"
 python3 - "${rows[@]}" <<'EOF2'
-import json, sys
-runs = {}
-for row in sys.argv[1:]:
-    name, mode, folder, wall = row.split(":")
-    try:
-        summary = json.load(open(folder + "/wearability.json"))["summary"]
-    except (OSError, ValueError):
-        summary = None
-    runs.setdefault(name, {})[mode] = (summary, float(wall))
+import sys
+sys.path.insert(0, "bench")
+from wearability_runs import runs_of
+runs = runs_of(sys.argv[1:])
 def cells(s, wall):
     check = s["final_check"]
     return f"{s['tests']} | {s['sewn']} / {s['laced']} | {check['laced']} | {wall:.1f}"

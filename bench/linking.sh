@@ -10,18 +10,12 @@
 source "$(dirname "$0")/plan_common.sh"
 source bench/wearability_pairs.sh
 MESHES=${MESHES:-"3torus-quad.obj anchor.obj double-torus-qd.obj eight.obj eight-qd.obj fertility.obj fertility-qd.obj rockerarm.obj torus.obj torus-qd.obj"}
-echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)" >&2
 wearability_modes "linking=" "simulated=--simulate-linked"
 python3 - "${rows[@]}" <<'EOF'
-import json, sys
-runs = {}
-for row in sys.argv[1:]:
-    name, mode, folder, wall = row.split(":")
-    try:
-        summary = json.load(open(folder + "/wearability.json"))["summary"]
-    except (OSError, ValueError):
-        summary = None
-    runs.setdefault(name, {})[mode] = (summary, float(wall))
+import sys
+sys.path.insert(0, "bench")
+from wearability_runs import runs_of
+runs = runs_of(sys.argv[1:])
 print("| mesh | arcs | tests | failed unsimulated | sewn / laced | s | simulated: tests | sewn / laced | s | ratio |")
 print("| --- | ---: | ---: | ---: | --- | ---: | ---: | --- | ---: | ---: |")
 for name, modes in runs.items():

@@ -3,9 +3,11 @@
 # defaults (`wearknit cut`), then its wearability stage over the mesh itself
 # once per mode, one after the other, each in a copy of the cut.
 #   wearability_modes MODE=OPTIONS ...
-# Fills `rows` with NAME:MODE:FOLDER:WALL_SECONDS, one per run, and prints
-# each run's time on stderr.
+# Fills `rows` with NAME:MODE:FOLDER:WALL_SECONDS, one per run (read them
+# with bench/wearability_runs.py), and prints the machine's load and each
+# run's time on stderr.
 wearability_modes() {
+  echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)" >&2
   rows=()
   local mesh name spec mode extra dir start wall
   for mesh in $MESHES; do
