@@ -9,6 +9,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "knitout/output_file.hpp"
 #include "planner/common/hash.hpp"
@@ -43,38 +44,6 @@ std::uint64_t final_seed(const EliminationResult& result) {
 
 std::string seed_text(const std::optional<std::uint64_t>& seed) {
   return seed ? "seed " + std::to_string(*seed) : std::string("an unrecorded seed");
-}
-
-// The sewn arcs to open after a failed round of the final check: the
-// `count` nearest to where its failed trials stay caught (the distance of
-// an arc is that of its nearest vertex to the edge of a caught region:
-// the caught vertices' centroid and radius).
-std::vector<int> arcs_to_open(const CoverMesh& cover, const EliminationResult& run,
-                              const TestResult& test, int count) {
-  std::vector<std::pair<double, int>> by_distance;
-  for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
-    if (run.arcs[a].label != Label::Sew) continue;
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const TrialOutcome& trial : test.trials) {
-      if (trial.success || trial.caught == 0) continue;
-      for (const auto& edge : cover.arcs[a].edges) {
-        for (const int v : edge) {
-          const double d = (cover.positions[static_cast<std::size_t>(v)] - trial.caught_at).norm() -
-                           trial.caught_radius;
-          nearest = std::min(nearest, std::max(d, 0.0));
-        }
-      }
-    }
-    by_distance.emplace_back(nearest, static_cast<int>(a));
-  }
-  std::sort(by_distance.begin(), by_distance.end());
-  std::vector<int> chosen;
-  for (const auto& entry : by_distance) {
-    if (static_cast<int>(chosen.size()) >= count) break;
-    chosen.push_back(entry.second);
-  }
-  std::sort(chosen.begin(), chosen.end());
-  return chosen;
 }
 
 // The final check's garment, finer than the elimination's: the garment as
@@ -206,6 +175,35 @@ Wearability label(CoverMesh garment, const Cut* cut, const cloth::SignedDistance
 }
 
 }  // namespace
+
+std::vector<int> arcs_to_open(const CoverMesh& cover, const EliminationResult& run,
+                              const TestResult& test, int count) {
+  std::vector<std::tuple<double, int, int>> by_distance;  // distance, -position, arc
+  for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
+    if (run.arcs[a].label != Label::Sew) continue;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const TrialOutcome& trial : test.trials) {
+      if (trial.success || trial.caught == 0) continue;
+      for (const auto& edge : cover.arcs[a].edges) {
+        for (const int v : edge) {
+          const double d = (cover.positions[static_cast<std::size_t>(v)] - trial.caught_at).norm() -
+                           trial.caught_radius;
+          nearest = std::min(nearest, std::max(d, 0.0));
+        }
+      }
+    }
+    by_distance.emplace_back(nearest, -run.arcs[a].position, static_cast<int>(a));
+  }
+  std::sort(by_distance.begin(), by_distance.end());
+  std::vector<int> chosen;
+  for (const auto& entry : by_distance) {
+    if (static_cast<int>(chosen.size()) >= count) break;
+    chosen.push_back(std::get<2>(entry));
+  }
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
+}
+
 
 int FinalCheck::reopened() const {
   int count = 0;

@@ -70,6 +70,17 @@ struct FinalCheck {
   int reopened() const;  // arcs laced by the check, over every round
 };
 
+// The sewn arcs of `run` to open after a failed round of the final check:
+// the `count` nearest to where its failed trials stay caught (the distance
+// of an arc is that of its nearest vertex to the edge of a caught region:
+// the caught vertices' centroid and radius). Among arcs as near, the one
+// the elimination sewed last first: it was sewn with the most others
+// closed, in the test that came off with the least to spare. A garment
+// caught over most of its cloth leaves most arcs at distance 0, so this
+// undoes the elimination from its end. Sorted by arc index.
+std::vector<int> arcs_to_open(const CoverMesh& cover, const EliminationResult& run,
+                              const TestResult& test, int count);
+
 // One cut tried: the one given (attempt 0) or a re-cut.
 struct CutAttempt {
   int attempt = 0;

@@ -517,6 +517,42 @@ TEST(WearabilityTest, EveryTrialMustComeOffInTheFinalChecksTest) {
   EXPECT_FALSE(on.trials[0].success);
 }
 
+// After a failed round the check laces the sewn arcs nearest where the
+// garment stays caught; among arcs as near, the last sewn first.
+TEST(WearabilityStageTest, TheCheckLacesTheArcsNearestTheCatchAndTheLastSewnFirst) {
+  const CoverMesh cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  planner::EliminationResult run;
+  run.arcs.resize(cover.arcs.size());
+  // Sewn in the order 2, 0, 3, 1; arc 4 laced.
+  const int positions[] = {1, 3, 0, 2, 4};
+  for (std::size_t a = 0; a < cover.arcs.size(); ++a) {
+    run.arcs[a].label = a == 4 ? planner::Label::Lace : planner::Label::Sew;
+    run.arcs[a].position = positions[a];
+  }
+  planner::TestResult test;
+  planner::TrialOutcome caught_everywhere;
+  caught_everywhere.caught = 200;
+  caught_everywhere.caught_radius = 10;
+  test.trials = {caught_everywhere};
+  EXPECT_EQ(planner::arcs_to_open(cover, run, test, 1), (std::vector<int>{1}));
+  EXPECT_EQ(planner::arcs_to_open(cover, run, test, 2), (std::vector<int>{1, 3}));
+  EXPECT_EQ(planner::arcs_to_open(cover, run, test, 9), (std::vector<int>{0, 1, 2, 3}))
+      << "never a laced arc";
+  // Caught at the middle of equator-1 (arc 2), away from the others: that
+  // arc first, though it was sewn first.
+  planner::TrialOutcome caught_there;
+  caught_there.caught = 3;
+  caught_there.caught_at = cover.positions[torus_vertex(24, 12, 9, 0)];
+  test.trials = {caught_there};
+  EXPECT_EQ(planner::arcs_to_open(cover, run, test, 1), (std::vector<int>{2}));
+  // A trial that came off says nothing about where it is caught.
+  planner::TrialOutcome off;
+  off.success = true;
+  off.caught = 50;
+  test.trials = {off, caught_there};
+  EXPECT_EQ(planner::arcs_to_open(cover, run, test, 1), (std::vector<int>{2}));
+}
+
 // A garment too coarse for its wearer fools the elimination: a box bag of
 // eight corners closed round a thin plate slides over it, the plate
 // passing through the bag's faces between the points that collide (its
