@@ -164,6 +164,7 @@ json check_json(const FinalCheck& check) {
                       {"passed", r.test.wearable},
                       {"trials", trials_json(r.test.trials)},
                       {"laced", r.reopened}});
+    if (!r.sewn_again.empty()) rounds.back()["sewn_again"] = r.sewn_again;
   }
   return {{"ran", check.ran},          {"passed", check.passed},
           {"trials", check.trials},    {"cloth_vertices", check.cloth_vertices},

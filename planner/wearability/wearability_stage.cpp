@@ -102,6 +102,45 @@ void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) 
     if (passed) check.passed = true;
     if (!more) break;
   }
+  // The last batch laced may hold arcs the garment did not need open: the
+  // round before it failed with all of them sewn, the round after passed
+  // with none. Binary search, in the elimination's order, for the longest
+  // run of them that can be sewn again and still pass every trial (sewing
+  // less never makes a garment harder to take off): ⌈log2 n⌉ rounds more,
+  // and the labels end as those of the last round that passed.
+  if (check.passed && check.rounds.size() >= 2) {
+    std::vector<int> batch = check.rounds[check.rounds.size() - 2].reopened;
+    std::sort(batch.begin(), batch.end(), [&](int a, int b) {
+      return run.arcs[static_cast<std::size_t>(a)].position <
+             run.arcs[static_cast<std::size_t>(b)].position;
+    });
+    // Sewing batch[0, low) passes (low = 0: the round that passed); sewing
+    // batch[0, high) fails (high = the batch: the round before).
+    std::size_t low = 0, high = batch.size();
+    while (high - low > 1) {
+      const std::size_t middle = low + (high - low) / 2;
+      for (std::size_t i = low; i < middle; ++i) {
+        run.arcs[static_cast<std::size_t>(batch[i])].label = Label::Sew;
+      }
+      CheckRound r;
+      r.seed = mix64(mix64(result.params.test.seed ^ 0x434845434BULL) +
+                     static_cast<std::uint64_t>(check.rounds.size()));
+      r.test = test_every_trial(garment, run.open(), wearer, patient, r.seed, check.trials);
+      r.sewn_again.assign(batch.begin() + static_cast<std::ptrdiff_t>(low),
+                          batch.begin() + static_cast<std::ptrdiff_t>(middle));
+      if (r.test.wearable) {
+        for (const int a : r.sewn_again) run.arcs[static_cast<std::size_t>(a)].reopened = false;
+        low = middle;
+      } else {
+        for (const int a : r.sewn_again) run.arcs[static_cast<std::size_t>(a)].label = Label::Lace;
+        r.reopened = r.sewn_again;
+        high = middle;
+      }
+      std::sort(r.sewn_again.begin(), r.sewn_again.end());
+      std::sort(r.reopened.begin(), r.reopened.end());
+      check.rounds.push_back(std::move(r));
+    }
+  }
   check.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -204,10 +243,18 @@ std::vector<int> arcs_to_open(const CoverMesh& cover, const EliminationResult& r
   return chosen;
 }
 
+const CheckRound* FinalCheck::last_passed() const {
+  for (auto it = rounds.rbegin(); it != rounds.rend(); ++it) {
+    if (it->test.wearable) return &*it;
+  }
+  return nullptr;
+}
 
 int FinalCheck::reopened() const {
   int count = 0;
-  for (const auto& r : rounds) count += static_cast<int>(r.reopened.size());
+  for (const auto& r : rounds) {
+    count += static_cast<int>(r.reopened.size()) - static_cast<int>(r.sewn_again.size());
+  }
   return count;
 }
 
@@ -463,14 +510,14 @@ std::string write_strip_off_frames(const Wearability& result,
   const EliminationResult& run = result.study.runs[static_cast<std::size_t>(chosen)];
   // The final configuration came off in a trial the frames repeat: the last
   // sewn arc's test, unless the final check laced arcs after it; then the
-  // first trial of the check's passing round, on the check's garment.
+  // first trial of the check's last passing round, on the check's garment.
   const FinalCheck& check = result.check;
-  const bool from_check = check.passed && check.reopened() > 0;
+  const bool from_check = check.passed && check.reopened() > 0 && check.last_passed() != nullptr;
   const CoverMesh dressed_mesh = from_check
                                      ? check_garment(result, wearer)
                                      : dressed(result.cloth, wearer, result.params.test.cloth);
   const std::uint64_t seed =
-      from_check ? check.rounds.back().test.trials.front().seed : final_seed(run);
+      from_check ? check.last_passed()->test.trials.front().seed : final_seed(run);
   const PolygonMesh garment = open_cuts(dressed_mesh, run.open());
   // One thread: a garment of a few thousand vertices gains little from
   // splitting a step, and loses much when the cores are busy.

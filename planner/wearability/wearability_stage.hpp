@@ -53,11 +53,18 @@ struct WearabilityStageParams {
 // too coarse to hold the garment decides the labels. When a trial fails,
 // the sewn arcs nearest where it stays caught are opened (laced), one in
 // the first round and twice as many in each round after, and the check
-// runs again with new seeds, until it passes or no sewn arc is left.
+// runs again with new seeds, until it passes or no sewn arc is left. When
+// it passed after lacing a batch of several, rounds more sew back the
+// longest run of that batch, in the elimination's order, with which the
+// garment still comes off in every trial (a binary search); the labels are
+// those of the last round that passed.
 struct CheckRound {
   std::uint64_t seed = 0;
   TestResult test;            // test_every_trial: its trials up to the first failure
   std::vector<int> reopened;  // arcs laced after this round (empty when it passed)
+  // A round after the check passed: arcs of the last batch laced that were
+  // sewn again for it (laced once more, and in `reopened`, when it failed).
+  std::vector<int> sewn_again;
 };
 
 struct FinalCheck {
@@ -68,6 +75,9 @@ struct FinalCheck {
   std::vector<CheckRound> rounds;
   double seconds = 0;
   int reopened() const;  // arcs laced by the check, over every round
+  // The last round that passed, whose configuration the labels are; null
+  // when none did.
+  const CheckRound* last_passed() const;
 };
 
 // The sewn arcs of `run` to open after a failed round of the final check:
