@@ -19,7 +19,9 @@
 // the arcs are taken one at a time in a random order, each tested once:
 // closed tentatively, kept closed (label sew) when the garment stays
 // wearable, reopened (label lace) otherwise. Repeating it over R random
-// orders gives each arc's probability of being laced (Fig. 18).
+// orders gives each arc's probability of being laced (Fig. 18). By default
+// the first run takes the arcs in the order of how far their sides parted
+// in that first test instead (ArcOrder::Opening).
 //
 // Group testing (on by default, WearabilityParams::group_testing) decides
 // the same order with fewer tests: the next run of arcs in the order is
