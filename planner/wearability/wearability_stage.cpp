@@ -366,8 +366,15 @@ std::string describe(const Wearability& result) {
     text << "final check: " << (check.passed ? "off" : "not off") << " in every one of "
          << check.trials << " fresh trials at " << check.cloth_vertices << " cloth vertices";
     if (check.reopened() > 0) {
-      text << " after lacing " << check.reopened() << " more arc"
-           << (check.reopened() == 1 ? "" : "s") << " (" << check.rounds.size() << " rounds)";
+      // Arcs the check laced and then sewed back in a round that passed.
+      int sewn_back = 0;
+      for (const auto& r : check.rounds) {
+        if (r.test.wearable) sewn_back += static_cast<int>(r.sewn_again.size());
+      }
+      const int laced = check.reopened() + sewn_back;
+      text << " after lacing " << laced << " more arc" << (laced == 1 ? "" : "s");
+      if (sewn_back > 0) text << " and sewing " << sewn_back << " of them back";
+      text << " (" << check.rounds.size() << " rounds)";
     }
     text << "; " << std::setprecision(1) << check.seconds << " s\n";
   }

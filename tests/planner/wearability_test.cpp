@@ -650,6 +650,42 @@ TEST(WearabilityMessageTest, W021SaysHowManyTrialsOfTheFinalCheckCameOff) {
   EXPECT_EQ(planner::check_warning(result), "");
 }
 
+// The summary line counts the arcs the check laced and those it sewed back.
+TEST(WearabilityMessageTest, TheSummarySaysWhatTheCheckLacedAndSewedBack) {
+  planner::Wearability result;
+  result.cover = torus_cover(1.0, 0.4, 24, 12, 4);
+  planner::EliminationResult run;
+  run.initial.wearable = true;
+  run.arcs.resize(result.cover.arcs.size());
+  run.arcs[2].label = run.arcs[3].label = run.arcs[4].label = planner::Label::Sew;
+  result.study.runs = {run};
+  result.check.ran = result.check.passed = true;
+  result.check.trials = 4;
+  result.check.cloth_vertices = 2048;
+  planner::TrialOutcome off, on;
+  off.success = true;
+  planner::CheckRound failed, passed, sewn_back, failed_again;
+  failed.test.trials = {off, on};
+  failed.reopened = {0, 1};
+  passed.test.wearable = true;
+  passed.test.trials = {off, off, off, off};
+  sewn_back = passed;
+  sewn_back.sewn_again = {0};
+  failed_again = failed;
+  failed_again.sewn_again = failed_again.reopened = {1};
+  result.check.rounds = {failed, passed, sewn_back, failed_again};
+  EXPECT_EQ(result.check.reopened(), 1);
+  EXPECT_EQ(result.check.last_passed(), &result.check.rounds[2]);
+  std::string text = planner::describe(result);
+  EXPECT_NE(text.find("final check: off in every one of 4 fresh trials at 2048 cloth vertices "
+                      "after lacing 2 more arcs and sewing 1 of them back (4 rounds)"),
+            std::string::npos)
+      << text;
+  result.check.rounds = {failed, passed};
+  text = planner::describe(result);
+  EXPECT_NE(text.find("after lacing 2 more arcs (2 rounds)"), std::string::npos) << text;
+}
+
 TEST(WearabilityMessageTest, W020NamesWhereTheGarmentStaysCaught) {
   planner::Wearability result;
   result.params.test.trials = 2;
