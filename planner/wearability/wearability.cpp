@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "planner/common/union_find.hpp"
+#include "planner/mesh/soup.hpp"
 #include "planner/wearability/linking.hpp"
 #include "simulators/cloth/parallel.hpp"
 
@@ -363,13 +364,6 @@ CoverMesh dressed(const CoverMesh& mesh, const cloth::SignedDistanceField& weare
 
 namespace {
 
-// Trials of one configuration, run in parallel and handed out in order.
-// With `every` false the configuration passes when one trial strips the
-// garment off: trials after the first success are stopped and not
-// recorded. With `every` true it passes only when all of them do: trials
-// after the first failure are stopped and not recorded. Either way the
-// trials recorded all ran to their end, so the record is the same for any
-// thread count.
 // The two sides of every edge of the open arcs in the split garment: per
 // arc, four garment vertices per edge (one side's ends, then the other's).
 std::vector<std::vector<std::array<int, 4>>> arc_sides(const CoverMesh& mesh,
@@ -379,9 +373,8 @@ std::vector<std::vector<std::array<int, 4>>> arc_sides(const CoverMesh& mesh,
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& face = mesh.faces[f];
     for (std::size_t i = 0; i < face.size(); ++i) {
-      const std::uint64_t key = (static_cast<std::uint64_t>(face[i]) << 32) |
-                                static_cast<std::uint32_t>(face[(i + 1) % face.size()]);
-      half_edge[key] = {static_cast<int>(f), static_cast<int>(i)};
+      half_edge[pair_key(face[i], face[(i + 1) % face.size()])] = {static_cast<int>(f),
+                                                                   static_cast<int>(i)};
     }
   }
   auto corner = [&](const std::array<int, 2>& at, int next) {
@@ -392,10 +385,8 @@ std::vector<std::vector<std::array<int, 4>>> arc_sides(const CoverMesh& mesh,
   for (std::size_t a = 0; a < mesh.arcs.size(); ++a) {
     if (a >= open.size() || !open[a]) continue;
     for (const auto& [u, w] : mesh.arcs[a].edges) {
-      const auto one =
-          half_edge.find((static_cast<std::uint64_t>(u) << 32) | static_cast<std::uint32_t>(w));
-      const auto other =
-          half_edge.find((static_cast<std::uint64_t>(w) << 32) | static_cast<std::uint32_t>(u));
+      const auto one = half_edge.find(pair_key(u, w));
+      const auto other = half_edge.find(pair_key(w, u));
       if (one == half_edge.end() || other == half_edge.end()) continue;
       sides[a].push_back({corner(one->second, 0), corner(one->second, 1), corner(other->second, 1),
                           corner(other->second, 0)});
@@ -435,6 +426,13 @@ std::vector<double> arc_openings(const std::vector<std::vector<std::array<int, 4
   return openings;
 }
 
+// Trials of one configuration, run in parallel and handed out in order.
+// With `every` false the configuration passes when one trial strips the
+// garment off: trials after the first success are stopped and not
+// recorded. With `every` true it passes only when all of them do: trials
+// after the first failure are stopped and not recorded. Either way the
+// trials recorded all ran to their end, so the record is the same for any
+// thread count.
 TestResult run_trials(const CoverMesh& dressed_mesh, const std::vector<bool>& open,
                       const cloth::SignedDistanceField& wearer, const WearabilityParams& params,
                       std::uint64_t seed, int count, bool every, bool measure_openings = false) {

@@ -67,6 +67,12 @@ WearabilityParams check_params(const WearabilityStageParams& params) {
   return check;
 }
 
+// The seed of the final check's round `round`: "CHECK" tags the stream,
+// apart from the elimination's seeds.
+std::uint64_t check_round_seed(const WearabilityStageParams& params, int round) {
+  return mix64(mix64(params.test.seed ^ 0x434845434BULL) + static_cast<std::uint64_t>(round));
+}
+
 // The final check (FinalCheck): rounds of M trials on the chosen run's
 // configuration, opening arcs after each failed round.
 void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) {
@@ -83,9 +89,7 @@ void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) 
   const WearabilityParams patient = check_params(result.params);
   for (int round = 0;; ++round) {
     CheckRound r;
-    // "CHECK" tags the stream, apart from the elimination's seeds.
-    r.seed =
-        mix64(mix64(result.params.test.seed ^ 0x434845434BULL) + static_cast<std::uint64_t>(round));
+    r.seed = check_round_seed(result.params, round);
     r.test = test_every_trial(garment, run.open(), wearer, patient, r.seed, check.trials);
     const bool passed = r.test.wearable;
     if (!passed) {
@@ -123,8 +127,7 @@ void final_check(Wearability& result, const cloth::SignedDistanceField& wearer) 
         run.arcs[static_cast<std::size_t>(batch[i])].label = Label::Sew;
       }
       CheckRound r;
-      r.seed = mix64(mix64(result.params.test.seed ^ 0x434845434BULL) +
-                     static_cast<std::uint64_t>(check.rounds.size()));
+      r.seed = check_round_seed(result.params, static_cast<int>(check.rounds.size()));
       r.test = test_every_trial(garment, run.open(), wearer, patient, r.seed, check.trials);
       r.sewn_again.assign(batch.begin() + static_cast<std::ptrdiff_t>(low),
                           batch.begin() + static_cast<std::ptrdiff_t>(middle));
