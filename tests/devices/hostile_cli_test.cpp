@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <thread>
 
 #include "devices/framing.hpp"
@@ -28,11 +27,6 @@ class HostileCliTest : public ::testing::Test {
   void SetUp() override { dir_ = wearknit::test::make_temp_dir("wk-hostile"); }
   void TearDown() override { std::filesystem::remove_all(dir_); }
   std::string path(const std::string& name) const { return "'" + (dir_ / name).string() + "'"; }
-  // Stops the mock serving the store D (the pattern does not match the
-  // shell that runs pkill).
-  void stop_mock() const {
-    EXPECT_EQ(std::system(("pkill -f -- '[-]-store " + (dir_ / "D").string() + "'").c_str()), 0);
-  }
   std::filesystem::path dir_;
 };
 
@@ -88,8 +82,8 @@ TEST_F(HostileCliTest, RawManifestsWithNamesNoStoreCanHoldAreRefusedAndTheDevice
     const std::string file = entry.path().filename().string();
     EXPECT_TRUE(file == "X.k" || file == "X.k.manifest.json" || file == ".wearknit-device") << file;
   }
-  stop_mock();
-  mock.finish();
+  mock.stop();
+  EXPECT_EQ(mock.finish().find("[killed"), std::string::npos);
 }
 
 TEST_F(HostileCliTest, TheSenderRefusesNamesTheRuleRefusesBeforeConnecting) {
@@ -174,8 +168,8 @@ TEST_F(HostileCliTest, ADeviceThatRebootsOnEveryFrameIsGivenUpWithinTheAttempts)
       << sent.err;
   EXPECT_EQ(sent.err.find("attempt 4 of"), std::string::npos) << sent.err;
   // The mock never finishes a job that way: stop it.
-  stop_mock();
-  mock.finish();
+  mock.stop();
+  EXPECT_EQ(mock.finish().find("[killed"), std::string::npos);
 }
 
 TEST_F(HostileCliTest, ADatBombIsRefusedByItsDeclaredSizeEverywhere) {
