@@ -24,7 +24,12 @@
 // Q ends near the fewest singular vertices its topology allows, placed by the
 // field. Index ±2 costs four times ±1, so singularities are not merged.
 // Each corner's own cost adds how badly the triangle would sit in the field
-// with that corner vanishing.
+// with that corner vanishing. A +1 and a -1 vertex of Q at most pair_rings
+// edges apart that the alignment kept are two ends of cut-arcs the surface
+// does not need: every vertex within pair_rings edges of them then costs
+// pair_cost more per quarter turn of index (the neighbourhood, so that the
+// pair is cancelled, not moved a few edges apart) and the flow runs again,
+// for at most pair_rounds rounds, until no such pair is left.
 #pragma once
 
 #include <vector>
@@ -40,6 +45,9 @@ struct FieldProxyParams {
   int misfit_cost = 30;          // per quarter turn of index away from the field's
   int singular_cost = 40;        // times (c(v) - 4)²
   int alignment_cost = 10;       // a corner whose triangle lies at 45 degrees to the field
+  int pair_cost = 40;            // per quarter turn near a pair (pair_rings), added each round
+  int pair_rounds = 4;           // flows run again to cancel near pairs (0: none)
+  int pair_rings = 2;            // a +1 and a -1 this many edges apart or nearer are a pair
 };
 
 struct FieldProxy {
@@ -71,8 +79,9 @@ double vanishing_misalignment(const PolygonMesh& mesh, int f, int corner, const 
 // Deterministic.
 FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams& params);
 
-// The flow alone, on a triangle mesh with its field's per-vertex index (in
-// quarter turns) and one field direction per triangle.
+// The flow alone (and its rounds against adjacent pairs), on a triangle mesh
+// with its field's per-vertex index (in quarter turns) and one field
+// direction per triangle.
 std::vector<int> field_vanishing_corners(const PolygonMesh& triangles,
                                          const std::vector<int>& field_index,
                                          const std::vector<Vec3>& field_direction,

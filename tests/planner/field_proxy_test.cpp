@@ -169,6 +169,48 @@ TEST(FieldProxyTest, ATorusGetsNoSingularVertex) {
   EXPECT_TRUE(labels.singular_vertices.empty());
 }
 
+TEST(FieldProxyTest, ANearPairTheCostsKeepIsCancelledInFurtherRounds) {
+  // A field with a +1 and a -1 one or two edges apart on a torus, and costs
+  // that keep them (misfit far above the singular cost): the first flow
+  // places both; the rounds against near pairs cancel them rather than
+  // move them apart.
+  const PolygonMesh mesh = triangulated(test_meshes::torus(24, 12));
+  const CrossField field = smoothest_cross_field(mesh, {});
+  const HalfedgeMesh q(mesh);
+  const int v = 100;
+  const int one_edge = q.to(q.outgoing(v).front());
+  auto neighbours = [&](int u) {
+    std::vector<int> out;
+    for (const int h : q.outgoing(u)) out.push_back(q.to(h));
+    return out;
+  };
+  int two_edges = -1;
+  for (const int w : neighbours(one_edge)) {
+    const auto around_v = neighbours(v);
+    if (w != v && std::find(around_v.begin(), around_v.end(), w) == around_v.end()) two_edges = w;
+  }
+  ASSERT_GE(two_edges, 0);
+  for (const int w : {one_edge, two_edges}) {
+    SCOPED_TRACE("the -1 at vertex " + std::to_string(w));
+    std::vector<int> index(field.index.size(), 0);
+    index[at(v)] = 1;
+    index[at(w)] = -1;
+    FieldProxyParams params;
+    params.misfit_cost = 100;
+    params.singular_cost = 10;
+    params.pair_rounds = 0;
+    const FieldLabels kept =
+        labels_of(mesh, field_vanishing_corners(mesh, index, field.direction, params));
+    ASSERT_EQ(kept.corner_count[at(v)], 3);
+    ASSERT_EQ(kept.corner_count[at(w)], 5);
+    params.pair_rounds = 4;
+    const FieldLabels cancelled =
+        labels_of(mesh, field_vanishing_corners(mesh, index, field.direction, params));
+    EXPECT_TRUE(cancelled.singular_vertices.empty());
+    EXPECT_EQ(adjacent_opposite_pairs(q, cancelled), 0);
+  }
+}
+
 TEST(FieldProxyTest, TheProxyOfAnEllipsoidCarriesTheFieldsSingularitiesOnly) {
   const PolygonMesh surface = triangulated(quad_ellipsoid(50.0, 0.7, 16));
   FieldProxyParams params;
