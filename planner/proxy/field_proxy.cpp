@@ -173,18 +173,136 @@ double vanishing_misalignment(const PolygonMesh& mesh, int f, int corner, const 
   return 0.5 * (cross_miss(c - b, d, n) + cross_miss(0.5 * (b + c) - a, d, n));
 }
 
+namespace {
+
+// Costs are scaled to integers: 100 per unit of the parameters.
+constexpr long long kCostScale = 100;
+
+// One min-cost flow of vanishing corners (field_proxy.hpp); `pair_penalty`
+// adds, per vertex, a cost per quarter turn of index.
+std::vector<int> solve_corner_flow(const HalfedgeMesh& q, const PolygonMesh& triangles,
+                                   const std::vector<int>& valence,
+                                   const std::vector<int>& field_index,
+                                   const std::vector<Vec3>& field_direction,
+                                   const FieldProxyParams& params,
+                                   const std::vector<long long>& pair_penalty) {
+  using Graph = lemon::ListDigraph;
+  const int nf = q.num_faces();
+  const int nv = q.num_vertices();
+  Graph graph;
+  std::vector<Graph::Node> face_node(at(nf)), vertex_node(at(nv));
+  for (auto& n : face_node) n = graph.addNode();
+  for (auto& n : vertex_node) n = graph.addNode();
+  const Graph::Node sink = graph.addNode();
+  Graph::ArcMap<long long> cost(graph);
+  Graph::NodeMap<int> supply(graph, 0);
+  std::vector<std::array<Graph::Arc, 3>> corner_arc(at(nf));
+  for (int f = 0; f < nf; ++f) {
+    supply[face_node[at(f)]] = 1;
+    for (int i = 0; i < 3; ++i) {
+      const int v = q.from(q.face_start(f) + i);
+      const Graph::Arc arc = graph.addArc(face_node[at(f)], vertex_node[at(v)]);
+      cost[arc] = std::llround(static_cast<double>(kCostScale * params.alignment_cost) *
+                               vanishing_misalignment(triangles, f, i, field_direction[at(f)]));
+      corner_arc[at(f)][at(i)] = arc;
+    }
+  }
+  supply[sink] = -nf;
+  // Vertex v with x vanishing corners keeps c = valence - x corners; each
+  // further unit is one arc to the sink costing the rise of the convex cost.
+  for (int v = 0; v < nv; ++v) {
+    const bool interior = !q.is_boundary_vertex(v);
+    const int target = 4 - field_index[at(v)];
+    auto vertex_cost = [&](int x) -> long long {
+      if (!interior) return 0;
+      const int c = valence[at(v)] - x;
+      return kCostScale * (static_cast<long long>(params.misfit_cost) * std::abs(c - target) +
+                           static_cast<long long>(params.singular_cost) * (c - 4) * (c - 4)) +
+             pair_penalty[at(v)] * std::abs(c - 4);
+    };
+    for (int x = 1; x <= valence[at(v)]; ++x) {
+      const Graph::Arc arc = graph.addArc(vertex_node[at(v)], sink);
+      cost[arc] = vertex_cost(x) - vertex_cost(x - 1);
+    }
+  }
+  lemon::NetworkSimplex<Graph, int, long long> flow(graph);
+  flow.costMap(cost).supplyMap(supply).upperMap(Graph::ArcMap<int>(graph, 1));
+  if (flow.run() != lemon::NetworkSimplex<Graph, int, long long>::OPTIMAL)
+    throw std::logic_error("field_vanishing_corners: the corner flow has no solution");
+  std::vector<int> vanishing(at(nf), -1);
+  for (int f = 0; f < nf; ++f) {
+    for (int i = 0; i < 3; ++i) {
+      if (flow.flow(corner_arc[at(f)][at(i)]) > 0) vanishing[at(f)] = i;
+    }
+    if (vanishing[at(f)] < 0)
+      throw std::logic_error("field_vanishing_corners: face " + std::to_string(f) +
+                             " got no vanishing corner");
+  }
+  return vanishing;
+}
+
+// The index the vanishing corners leave at every vertex (0 on the boundary).
+std::vector<int> corner_index(const HalfedgeMesh& q, const std::vector<int>& valence,
+                              const std::vector<int>& vanishing) {
+  std::vector<int> index(at(q.num_vertices()), 0);
+  for (int v = 0; v < q.num_vertices(); ++v) {
+    index[at(v)] = q.is_boundary_vertex(v) ? 0 : 4 - valence[at(v)];
+  }
+  for (int f = 0; f < q.num_faces(); ++f) {
+    const int v = q.from(q.face_start(f) + vanishing[at(f)]);
+    if (!q.is_boundary_vertex(v)) ++index[at(v)];
+  }
+  return index;
+}
+
+// The vertices within `rings` edges of v, v first.
+std::vector<int> ball(const HalfedgeMesh& q, int v, int rings) {
+  std::vector<int> found{v};
+  std::unordered_map<int, int> depth{{v, 0}};
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const int u = found[i];
+    const int next = depth[u] + 1;
+    if (next > rings) continue;
+    for (const int h : q.outgoing(u)) {
+      if (depth.emplace(q.to(h), next).second) found.push_back(q.to(h));
+    }
+  }
+  return found;
+}
+
+// Per vertex, whether it lies within `rings` edges of a +1 and a -1 vertex
+// at most `rings` edges apart (pairs taken greedily in vertex order); empty
+// when there is no such pair.
+std::vector<bool> near_pairs(const HalfedgeMesh& q, const std::vector<int>& index, int rings) {
+  std::vector<bool> near(at(q.num_vertices()), false);
+  std::vector<bool> paired(at(q.num_vertices()), false);
+  bool any = false;
+  for (int v = 0; v < q.num_vertices(); ++v) {
+    if (paired[at(v)] || std::abs(index[at(v)]) != 1) continue;
+    for (const int w : ball(q, v, rings)) {
+      if (paired[at(w)] || index[at(w)] != -index[at(v)]) continue;
+      paired[at(v)] = paired[at(w)] = true;
+      any = true;
+      for (const int end : {v, w}) {
+        for (const int u : ball(q, end, rings)) near[at(u)] = true;
+      }
+      break;
+    }
+  }
+  return any ? near : std::vector<bool>{};
+}
+
+}  // namespace
+
 std::vector<int> field_vanishing_corners(const PolygonMesh& triangles,
                                          const std::vector<int>& field_index,
                                          const std::vector<Vec3>& field_direction,
                                          const FieldProxyParams& params) {
-  using Graph = lemon::ListDigraph;
   const HalfedgeMesh q(triangles);
   const int nf = q.num_faces();
   const int nv = q.num_vertices();
   if (field_index.size() != at(nv) || field_direction.size() != at(nf))
     throw std::logic_error("field_vanishing_corners: field does not match the mesh");
-  // Costs are scaled to integers: 100 per unit of the parameters.
-  constexpr long long kScale = 100;
   std::vector<int> valence(at(nv), 0);
   for (int f = 0; f < nf; ++f) {
     if (q.degree(f) != 3)
@@ -192,114 +310,25 @@ std::vector<int> field_vanishing_corners(const PolygonMesh& triangles,
                              " is not a triangle");
     for (int i = 0; i < 3; ++i) ++valence[at(q.from(q.face_start(f) + i))];
   }
-  // One min-cost flow; `pair_penalty` adds, per vertex, a cost per quarter
-  // turn of index.
-  auto solve = [&](const std::vector<long long>& pair_penalty) {
-    Graph graph;
-    std::vector<Graph::Node> face_node(at(nf)), vertex_node(at(nv));
-    for (auto& n : face_node) n = graph.addNode();
-    for (auto& n : vertex_node) n = graph.addNode();
-    const Graph::Node sink = graph.addNode();
-    Graph::ArcMap<long long> cost(graph);
-    Graph::NodeMap<int> supply(graph, 0);
-    std::vector<std::array<Graph::Arc, 3>> corner_arc(at(nf));
-    for (int f = 0; f < nf; ++f) {
-      supply[face_node[at(f)]] = 1;
-      for (int i = 0; i < 3; ++i) {
-        const int v = q.from(q.face_start(f) + i);
-        const Graph::Arc arc = graph.addArc(face_node[at(f)], vertex_node[at(v)]);
-        cost[arc] = std::llround(static_cast<double>(kScale * params.alignment_cost) *
-                                 vanishing_misalignment(triangles, f, i, field_direction[at(f)]));
-        corner_arc[at(f)][at(i)] = arc;
-      }
-    }
-    supply[sink] = -nf;
-    // Vertex v with x vanishing corners keeps c = valence - x corners; each
-    // further unit is one arc to the sink costing the rise of the convex
-    // cost.
-    for (int v = 0; v < nv; ++v) {
-      const bool interior = !q.is_boundary_vertex(v);
-      const int target = 4 - field_index[at(v)];
-      auto vertex_cost = [&](int x) -> long long {
-        if (!interior) return 0;
-        const int c = valence[at(v)] - x;
-        return kScale * (static_cast<long long>(params.misfit_cost) * std::abs(c - target) +
-                         static_cast<long long>(params.singular_cost) * (c - 4) * (c - 4)) +
-               pair_penalty[at(v)] * std::abs(c - 4);
-      };
-      for (int x = 1; x <= valence[at(v)]; ++x) {
-        const Graph::Arc arc = graph.addArc(vertex_node[at(v)], sink);
-        cost[arc] = vertex_cost(x) - vertex_cost(x - 1);
-      }
-    }
-    lemon::NetworkSimplex<Graph, int, long long> flow(graph);
-    flow.costMap(cost).supplyMap(supply).upperMap(Graph::ArcMap<int>(graph, 1));
-    if (flow.run() != lemon::NetworkSimplex<Graph, int, long long>::OPTIMAL)
-      throw std::logic_error("field_vanishing_corners: the corner flow has no solution");
-    std::vector<int> vanishing(at(nf), -1);
-    for (int f = 0; f < nf; ++f) {
-      for (int i = 0; i < 3; ++i) {
-        if (flow.flow(corner_arc[at(f)][at(i)]) > 0) vanishing[at(f)] = i;
-      }
-      if (vanishing[at(f)] < 0)
-        throw std::logic_error("field_vanishing_corners: face " + std::to_string(f) +
-                               " got no vanishing corner");
-    }
-    return vanishing;
-  };
-  // The index the corners leave at every interior vertex.
-  auto corner_index = [&](const std::vector<int>& vanishing) {
-    std::vector<int> index(at(nv), 0);
-    for (int v = 0; v < nv; ++v) index[at(v)] = q.is_boundary_vertex(v) ? 0 : 4 - valence[at(v)];
-    for (int f = 0; f < nf; ++f) {
-      const int v = q.from(q.face_start(f) + vanishing[at(f)]);
-      if (!q.is_boundary_vertex(v)) ++index[at(v)];
-    }
-    return index;
-  };
   std::vector<long long> pair_penalty(at(nv), 0);
-  std::vector<int> vanishing = solve(pair_penalty);
-  // Vertices within `rings` edges of v.
-  auto ball = [&](int v, int rings) {
-    std::vector<int> found{v};
-    std::unordered_map<int, int> depth{{v, 0}};
-    for (std::size_t i = 0; i < found.size(); ++i) {
-      const int u = found[i];
-      if (depth[u] == rings) continue;
-      for (const int h : q.outgoing(u)) {
-        const int w = q.to(h);
-        if (depth.emplace(w, depth[u] + 1).second) found.push_back(w);
-      }
-    }
-    return found;
+  auto solve = [&] {
+    return solve_corner_flow(q, triangles, valence, field_index, field_direction, params,
+                             pair_penalty);
   };
+  std::vector<int> vanishing = solve();
   // A +1/-1 pair within pair_rings edges that the alignment kept is two
   // ends of cut-arcs the surface does not need: every vertex within
   // pair_rings of it costs more to be singular, so the pair can neither stay
   // nor step a few edges apart, and the flow runs again, until no such pair
   // is left or the rounds are spent.
   for (int round = 0; round < params.pair_rounds; ++round) {
-    const std::vector<int> index = corner_index(vanishing);
-    std::vector<bool> near(at(nv), false);
-    std::vector<bool> paired(at(nv), false);
-    int pairs = 0;
+    const std::vector<bool> near =
+        near_pairs(q, corner_index(q, valence, vanishing), params.pair_rings);
+    if (near.empty()) break;
     for (int v = 0; v < nv; ++v) {
-      if (paired[at(v)] || std::abs(index[at(v)]) != 1) continue;
-      for (const int w : ball(v, params.pair_rings)) {
-        if (paired[at(w)] || index[at(w)] != -index[at(v)]) continue;
-        paired[at(v)] = paired[at(w)] = true;
-        ++pairs;
-        for (const int end : {v, w}) {
-          for (const int u : ball(end, params.pair_rings)) near[at(u)] = true;
-        }
-        break;
-      }
+      if (near[at(v)]) pair_penalty[at(v)] += kCostScale * params.pair_cost;
     }
-    if (pairs == 0) break;
-    for (int v = 0; v < nv; ++v) {
-      if (near[at(v)]) pair_penalty[at(v)] += kScale * params.pair_cost;
-    }
-    vanishing = solve(pair_penalty);
+    vanishing = solve();
   }
   return vanishing;
 }
