@@ -6,6 +6,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -230,17 +231,45 @@ PolygonMesh fan_triangulated(const PolygonMesh& mesh) {
   }
   PolygonMesh tri;
   tri.positions = mesh.positions;
+  // How flat the flattest triangle of the fan from corner k is: twice its
+  // area over its longest side squared (0 for three points on a line).
+  auto fan_shape = [&](const std::vector<int>& face, std::size_t k) {
+    const std::size_t n = face.size();
+    double least = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 1; i + 1 < n; ++i) {
+      const Vec3& a = mesh.positions[at(face[k])];
+      const Vec3& b = mesh.positions[at(face[(k + i) % n])];
+      const Vec3& c = mesh.positions[at(face[(k + i + 1) % n])];
+      const double longest =
+          std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+      least = std::min(least, longest > 0.0 ? (b - a).cross(c - a).norm() / longest : 0.0);
+    }
+    return least;
+  };
+  // A polygon with a straight corner (a vertex on the line between its
+  // neighbours, as where a quad meets two smaller ones) fanned from the
+  // wrong corner gives a triangle of no area, which has no normal for a
+  // field's frame and whose subdivision puts samples on top of each other.
+  constexpr double kFlat = 0.01;
   for (const auto& face : mesh.faces) {
     const std::size_t n = face.size();
     std::size_t start = 0;
+    bool found = false;
+    double best = -1.0;
     for (std::size_t k = 0; k < n && n > 3; ++k) {
       bool free = true;
       for (std::size_t i = 2; i + 1 < n; ++i)
         free = free && edges.count(std::minmax(face[k], face[(k + i) % n])) == 0;
-      if (free) {
+      if (!free) continue;
+      // The first free corner, unless its fan is flat: then the first free
+      // corner whose fan is not, else the least flat.
+      const double shape = fan_shape(face, k);
+      if (!found || (best < kFlat && shape > best)) {
         start = k;
-        break;
+        best = shape;
+        found = true;
       }
+      if (best >= kFlat) break;
     }
     for (std::size_t i = 2; i + 1 < n; ++i)
       edges.insert(std::minmax(face[start], face[(start + i) % n]));

@@ -52,6 +52,24 @@ PolygonMesh rotated(PolygonMesh mesh, double angle, const Vec3& axis) {
   return mesh;
 }
 
+TEST(CrossFieldTest, AQuadWithAStraightCornerIsFannedFromThatCorner) {
+  // A pentagon beside two quads: its corner 1 lies on the straight line
+  // between its neighbours 0 and 2. Fanned from 0, the triangle (0, 1, 2)
+  // would have no area; fanned from 1, none has.
+  PolygonMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0},  {2, 0, 0},  {2, 1, 0},
+                    {0, 1, 0}, {0, -1, 0}, {1, -1, 0}, {2, -1, 0}};
+  mesh.faces = {{0, 1, 2, 3, 4}, {5, 6, 1, 0}, {6, 7, 2, 1}};
+  const PolygonMesh triangles = fan_triangulated(mesh);
+  ASSERT_EQ(triangles.faces.size(), 3U + 2U + 2U);
+  for (const auto& f : triangles.faces) {
+    const Vec3& a = triangles.positions[at(f[0])];
+    const Vec3& b = triangles.positions[at(f[1])];
+    const Vec3& c = triangles.positions[at(f[2])];
+    EXPECT_GT((b - a).cross(c - a).norm(), 0.1) << f[0] << " " << f[1] << " " << f[2];
+  }
+}
+
 TEST(CrossFieldTest, ASphereHasEightPlusOneSingularities) {
   const CrossField field = smoothest_cross_field(quad_ellipsoid(50.0, 1.0, 8), {});
   const FieldSingularities s = field_singularities(field);
