@@ -70,8 +70,11 @@ CrossField smoothest_cross_field(const PolygonMesh& surface, const CrossFieldPar
 // Each polygon as a fan of triangles from the first corner whose diagonals
 // are not already edges of the mesh: a diagonal that repeats an edge (two
 // quads sharing two sides at a valence-2 vertex) would join three
-// triangles and break the manifold. `resample` fans polygons from their
-// first corner whatever the diagonals; give it this mesh instead.
+// triangles and break the manifold. Among those corners the first whose fan
+// holds no flat triangle (twice the area under 0.01 of the longest side
+// squared; a straight corner fanned from its neighbour makes one), else the
+// least flat. `resample` fans polygons from their first corner whatever the
+// diagonals; give it this mesh instead.
 PolygonMesh fan_triangulated(const PolygonMesh& mesh);
 
 // What the cut stage reports of a field.
