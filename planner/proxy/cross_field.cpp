@@ -254,8 +254,7 @@ PolygonMesh fan_triangulated(const PolygonMesh& mesh) {
   for (const auto& face : mesh.faces) {
     const std::size_t n = face.size();
     std::size_t start = 0;
-    bool found = false;
-    double best = -1.0;
+    double best = -1.0;  // the chosen fan's shape; below 0 while none is chosen
     for (std::size_t k = 0; k < n && n > 3; ++k) {
       bool free = true;
       for (std::size_t i = 2; i + 1 < n; ++i)
@@ -264,10 +263,9 @@ PolygonMesh fan_triangulated(const PolygonMesh& mesh) {
       // The first free corner, unless its fan is flat: then the first free
       // corner whose fan is not, else the least flat.
       const double shape = fan_shape(face, k);
-      if (!found || (best < kFlat && shape > best)) {
+      if (best < kFlat && shape > best) {
         start = k;
         best = shape;
-        found = true;
       }
       if (best >= kFlat) break;
     }

@@ -178,12 +178,12 @@ namespace {
 // Costs are scaled to integers: 100 per unit of the parameters.
 constexpr long long kCostScale = 100;
 
-// One min-cost flow of vanishing corners (field_proxy.hpp); `pair_penalty`
-// adds, per vertex, a cost per quarter turn of index.
-std::vector<int> solve_corner_flow(const HalfedgeMesh& q, const PolygonMesh& triangles,
-                                   const std::vector<int>& valence,
+// One min-cost flow of vanishing corners (field_proxy.hpp): `corner_cost`
+// per face and corner (the alignment), `pair_penalty` per vertex a cost per
+// quarter turn of index.
+std::vector<int> solve_corner_flow(const HalfedgeMesh& q, const std::vector<int>& valence,
                                    const std::vector<int>& field_index,
-                                   const std::vector<Vec3>& field_direction,
+                                   const std::vector<std::array<long long, 3>>& corner_cost,
                                    const FieldProxyParams& params,
                                    const std::vector<long long>& pair_penalty) {
   using Graph = lemon::ListDigraph;
@@ -202,8 +202,7 @@ std::vector<int> solve_corner_flow(const HalfedgeMesh& q, const PolygonMesh& tri
     for (int i = 0; i < 3; ++i) {
       const int v = q.from(q.face_start(f) + i);
       const Graph::Arc arc = graph.addArc(face_node[at(f)], vertex_node[at(v)]);
-      cost[arc] = std::llround(static_cast<double>(kCostScale * params.alignment_cost) *
-                               vanishing_misalignment(triangles, f, i, field_direction[at(f)]));
+      cost[arc] = corner_cost[at(f)][at(i)];
       corner_arc[at(f)][at(i)] = arc;
     }
   }
@@ -304,16 +303,21 @@ std::vector<int> field_vanishing_corners(const PolygonMesh& triangles,
   if (field_index.size() != at(nv) || field_direction.size() != at(nf))
     throw std::logic_error("field_vanishing_corners: field does not match the mesh");
   std::vector<int> valence(at(nv), 0);
+  std::vector<std::array<long long, 3>> corner_cost(at(nf));
   for (int f = 0; f < nf; ++f) {
     if (q.degree(f) != 3)
       throw std::logic_error("field_vanishing_corners: face " + std::to_string(f) +
                              " is not a triangle");
-    for (int i = 0; i < 3; ++i) ++valence[at(q.from(q.face_start(f) + i))];
+    for (int i = 0; i < 3; ++i) {
+      ++valence[at(q.from(q.face_start(f) + i))];
+      corner_cost[at(f)][at(i)] =
+          std::llround(static_cast<double>(kCostScale * params.alignment_cost) *
+                       vanishing_misalignment(triangles, f, i, field_direction[at(f)]));
+    }
   }
   std::vector<long long> pair_penalty(at(nv), 0);
   auto solve = [&] {
-    return solve_corner_flow(q, triangles, valence, field_index, field_direction, params,
-                             pair_penalty);
+    return solve_corner_flow(q, valence, field_index, corner_cost, params, pair_penalty);
   };
   std::vector<int> vanishing = solve();
   // A +1/-1 pair within pair_rings edges that the alignment kept is two

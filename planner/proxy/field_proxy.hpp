@@ -79,7 +79,7 @@ double vanishing_misalignment(const PolygonMesh& mesh, int f, int corner, const 
 // Deterministic.
 FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams& params);
 
-// The flow alone (and its rounds against adjacent pairs), on a triangle mesh
+// The flow alone (and its rounds against near pairs), on a triangle mesh
 // with its field's per-vertex index (in quarter turns) and one field
 // direction per triangle.
 std::vector<int> field_vanishing_corners(const PolygonMesh& triangles,
