@@ -1,6 +1,7 @@
 // Which of the cut's two field directions is knitted as the course
 // (stitch_mesher.hpp, KnitDirection).
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <future>
 #include <limits>
@@ -39,16 +40,24 @@ LabelledDisc turned(const LabelledDisc& disc) {
   return result;
 }
 
-double stitch_mesh_score(const StitchMeshResult& result, const LabelledDisc& disc, double wale_mm) {
+double stitch_mesh_score(const StitchMeshResult& result, const LabelledDisc& disc,
+                         const StitchMeshParams& params) {
   if (!result.problems.empty() || result.mesh.faces.empty())
     return -std::numeric_limits<double>::infinity();
   const StitchMeshFigures f = measure(result.mesh);
   if (f.course.count + f.wale.count <= 0 || f.faces <= 0)
     return -std::numeric_limits<double>::infinity();
-  // The kind of side that keeps its size worse decides.
-  const double within = std::min(f.course.within_15_percent, f.wale.within_15_percent);
+  // The kind of side that keeps its size worse decides. A few sides far off
+  // (a row as tall as a levelled region) are few in the share within 15% but
+  // make the whole piece longer: a mean off by more than its target's 5%
+  // costs what it is off beyond that.
+  auto kept = [](const EdgeLengthStats& sides, double target_mm) {
+    const double mean_off = std::abs(sides.mean_mm / target_mm - 1.0);
+    return sides.within_15_percent - std::max(0.0, mean_off - kMeanSizeTolerance);
+  };
+  const double within = std::min(kept(f.course, params.course_mm), kept(f.wale, params.wale_mm));
   const double off =
-      static_cast<double>(off_surface_faces(result.mesh, disc, wale_mm).faces.size());
+      static_cast<double>(off_surface_faces(result.mesh, disc, params.wale_mm).faces.size());
   return within - off / static_cast<double>(f.faces);
 }
 
@@ -72,8 +81,8 @@ DirectedStitchMesh make_directed_stitch_mesh(const LabelledDisc& disc,
       std::async(std::launch::async, [&] { return make_stitch_mesh(other, params); });
   StitchMeshResult as_cut = make_stitch_mesh(disc, params);
   StitchMeshResult turned_result = turned_mesh.get();
-  chosen.score_as_cut = stitch_mesh_score(as_cut, disc, params.wale_mm);
-  chosen.score_turned = stitch_mesh_score(turned_result, other, params.wale_mm);
+  chosen.score_as_cut = stitch_mesh_score(as_cut, disc, params);
+  chosen.score_turned = stitch_mesh_score(turned_result, other, params);
   chosen.compared = true;
   chosen.turned = chosen.score_turned > chosen.score_as_cut;
   chosen.result = chosen.turned ? std::move(turned_result) : std::move(as_cut);

@@ -213,11 +213,17 @@ std::optional<KnitDirection> parse_knit_direction(const std::string& text);
 // The disc with every side's direction turned a quarter (course <-> wale).
 LabelledDisc turned(const LabelledDisc& disc);
 
-// How well a stitch mesh keeps the stitch size: the share of its course
-// sides or of its wale sides within 15% of their targets, whichever is
-// lower, less the share of its stitches off the surface (off_surface_faces
-// at one wale); -infinity for a mesh with problems.
-double stitch_mesh_score(const StitchMeshResult& result, const LabelledDisc& disc, double wale_mm);
+// The targets of a stitch mesh's size (docs/stitch-mesh.md, "Targets"): the
+// mean course and the mean wale side within this fraction of their targets.
+constexpr double kMeanSizeTolerance = 0.05;
+
+// How well a stitch mesh keeps the stitch size: for course and for wale
+// sides, the share within 15% of the target less how far their mean is off
+// the target beyond kMeanSizeTolerance; the lower of the two, less the share
+// of its stitches off the surface (off_surface_faces at one wale);
+// -infinity for a mesh with problems.
+double stitch_mesh_score(const StitchMeshResult& result, const LabelledDisc& disc,
+                         const StitchMeshParams& params);
 
 struct DirectedStitchMesh {
   StitchMeshResult result;

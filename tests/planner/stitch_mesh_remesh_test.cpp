@@ -518,8 +518,8 @@ TEST(StitchMeshDirectionTest, BestKeepsTheWayWithTheHigherScore) {
   const DirectedStitchMesh other = make_directed_stitch_mesh(disc, params, KnitDirection::Turned);
   EXPECT_FALSE(as_cut.turned);
   EXPECT_TRUE(other.turned);
-  EXPECT_DOUBLE_EQ(best.score_as_cut, stitch_mesh_score(as_cut.result, disc, params.wale_mm));
-  EXPECT_DOUBLE_EQ(best.score_turned, stitch_mesh_score(other.result, once, params.wale_mm));
+  EXPECT_DOUBLE_EQ(best.score_as_cut, stitch_mesh_score(as_cut.result, disc, params));
+  EXPECT_DOUBLE_EQ(best.score_turned, stitch_mesh_score(other.result, once, params));
   EXPECT_EQ(best.turned, best.score_turned > best.score_as_cut);
   const StitchMesh& kept = best.turned ? other.result.mesh : as_cut.result.mesh;
   EXPECT_EQ(best.result.mesh.faces.size(), kept.faces.size());
@@ -531,7 +531,67 @@ TEST(StitchMeshDirectionTest, BestKeepsTheWayWithTheHigherScore) {
   // A mesh that could not be made scores below any that could.
   StitchMeshResult failed;
   failed.problems.push_back("x");
-  EXPECT_LT(stitch_mesh_score(failed, disc, params.wale_mm), best.score_as_cut);
+  EXPECT_LT(stitch_mesh_score(failed, disc, params), best.score_as_cut);
+}
+
+// A flat grid of knit stitches, `columns` of one course wide, with rows of
+// the given heights (in wales) stacked from y = 0.
+StitchMeshResult knit_grid(const StitchMeshParams& params, int columns,
+                           const std::vector<double>& row_wales) {
+  StitchMeshResult result;
+  StitchMesh& mesh = result.mesh;
+  mesh.course_mm = params.course_mm;
+  mesh.wale_mm = params.wale_mm;
+  double y = 0;
+  for (std::size_t j = 0; j <= row_wales.size(); ++j) {
+    for (int i = 0; i <= columns; ++i) mesh.positions.emplace_back(i * params.course_mm, y, 0.0);
+    if (j < row_wales.size()) y += row_wales[j] * params.wale_mm;
+  }
+  const std::vector<EdgeRole> knit{EdgeRole::CourseIn, EdgeRole::Wale, EdgeRole::CourseOut,
+                                   EdgeRole::Wale};
+  const auto n = static_cast<std::uint32_t>(columns + 1);
+  for (std::uint32_t j = 0; j < row_wales.size(); ++j) {
+    for (std::uint32_t i = 0; i + 1 < n; ++i) {
+      mesh.faces.push_back({{j * n + i, j * n + i + 1, (j + 1) * n + i + 1, (j + 1) * n + i},
+                            knit,
+                            {kNoArc, kNoArc, kNoArc, kNoArc},
+                            FaceType::Knit});
+    }
+  }
+  return result;
+}
+
+// Which way is kept weighs how far the mean side is off, not only how many
+// sides are: a mesh with one row twenty wales tall has 95% of its wale sides
+// within 15% but is nearly twice the height it should be, and scores below
+// a mesh whose rows alternate one and 1.2 wales (half within 15%, mean 1.1).
+TEST(StitchMeshDirectionTest, AFewSidesFarOffCostWhatTheyAddToTheMean) {
+  const StitchMeshParams params;
+  std::vector<double> one_tall(20, 1.0);
+  one_tall[7] = 20.0;
+  std::vector<double> alternating;
+  for (int j = 0; j < 20; ++j) alternating.push_back(j % 2 == 0 ? 1.0 : 1.2);
+  const StitchMeshResult tall = knit_grid(params, 20, one_tall);
+  const StitchMeshResult uneven = knit_grid(params, 20, alternating);
+  const StitchMeshResult even = knit_grid(params, 20, std::vector<double>(20, 1.0));
+  for (const StitchMeshResult* r : {&tall, &uneven, &even}) ASSERT_TRUE(check(r->mesh).empty());
+  const auto disc_under = [&](const std::vector<double>& rows) {
+    double height = 0;
+    for (double h : rows) height += h * params.wale_mm;
+    return sd::rectangle(20 * params.course_mm, height, 20, 40);
+  };
+  const StitchMeshFigures tall_figures = measure(tall.mesh);
+  const StitchMeshFigures uneven_figures = measure(uneven.mesh);
+  EXPECT_NEAR(tall_figures.wale.within_15_percent, 0.95, 1e-9);
+  EXPECT_NEAR(uneven_figures.wale.within_15_percent, 0.5, 1e-9);
+  const double tall_score = stitch_mesh_score(tall, disc_under(one_tall), params);
+  const double uneven_score = stitch_mesh_score(uneven, disc_under(alternating), params);
+  // 0.95 less the mean's 0.95 beyond 0.05; 0.5 less 0.1 beyond 0.05.
+  EXPECT_NEAR(tall_score, 0.05, 1e-9);
+  EXPECT_NEAR(uneven_score, 0.45, 1e-9);
+  EXPECT_GT(uneven_score, tall_score);
+  // A mesh on its targets scores the share within 15%: all of it.
+  EXPECT_NEAR(stitch_mesh_score(even, disc_under(std::vector<double>(20, 1.0)), params), 1.0, 1e-9);
 }
 
 TEST(StitchMeshRemeshTest, StitchesLieOnTheGarmentsSurfaceNotOnTheDiscsFacets) {
