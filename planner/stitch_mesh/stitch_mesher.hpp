@@ -94,10 +94,10 @@ struct StitchMeshParams {
   double saddle_wales = 5.0;
   // Step 2: fits of the row time that drain its interior extrema (each
   // pit or peak sloped towards the point where it spills, and t fitted
-  // again) before any left is levelled; 0 levels them at once. More fits
-  // drain more but can leave taller rows (docs/stitch-mesh.md, "Interior
-  // extrema").
-  int drain_fits = 1;
+  // again) before any left is levelled; 0 levels them at once. Fits stop
+  // once no extremum is left (docs/stitch-mesh.md, step 2, "Interior
+  // extrema", has what one fit and three leave on the shared meshes).
+  int drain_fits = 3;
   // Step 5: at most this many sweeps moving the inner stitch vertices over
   // the surface so the sides come closer to their target lengths (0: as
   // zipped). docs/stitch-mesh.md measures the count.
