@@ -114,6 +114,7 @@ json report_json(const CutMesh& cut, const CutSummary& s, const CutReport& r) {
             {"holes_filled", r.holes_filled},
             {"folds_removed", r.folds_removed},
             {"remesh_attempts", r.remesh_attempts},
+            {"edge_candidates", r.edge_candidates},
             {"input_verdict", r.input_verdict},
             {"valence_flips", r.valence_flips},
             {"field_misfit", r.field_misfit},
@@ -203,6 +204,7 @@ CutReport report_from_json(const json& r) {
   report.holes_filled = proxy.value("holes_filled", 0);
   report.folds_removed = proxy.value("folds_removed", 0);
   report.remesh_attempts = proxy.value("remesh_attempts", 0);
+  report.edge_candidates = proxy.value("edge_candidates", 0);
   report.input_verdict = proxy.value("input_verdict", std::string());
   report.valence_flips = proxy.value("valence_flips", 0);
   report.field_misfit = proxy.value("field_misfit", 0);

@@ -87,6 +87,7 @@ void take_proxy(const ProxyResult& proxy, CutReport& report) {
   report.holes_filled = proxy.holes_filled;
   report.folds_removed = proxy.folds_removed;
   report.remesh_attempts = proxy.remesh_attempts;
+  report.edge_candidates = proxy.edge_candidates;
   report.proxy_method = proxy.method;
   report.remesh_failure = proxy.remesh_failure;
   report.valence_flips = proxy.valence_flips;

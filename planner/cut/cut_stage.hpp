@@ -43,6 +43,7 @@ struct CutReport {
   int holes_filled = 0;     // holes of the extraction closed by a polygon
   int folds_removed = 0;    // quads of nil area where the lattice folded, welded
   int remesh_attempts = 0;  // extractions tried, at spacings a few percent apart
+  int edge_candidates = 0;  // field proxies made, at target edges a few percent apart
   std::string proxy_method = "input";
   std::string remesh_failure;
   // With --proxy field and a quad-dominant input: why it was kept or

@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <future>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -337,9 +340,14 @@ std::vector<int> field_vanishing_corners(const PolygonMesh& triangles,
   return vanishing;
 }
 
-FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams& params) {
+namespace {
+
+// One proxy at one target edge: steps 1-3 of docs/cutting.md, "The
+// field-guided proxy".
+FieldProxy proxy_at(const PolygonMesh& triangles, double edge_mm, const FieldProxyParams& params) {
   FieldProxy result;
-  result.mesh = resample(fan_triangulated(surface), params.edge_mm);
+  result.edge_mm = edge_mm;
+  result.mesh = resample(triangles, edge_mm);
   result.valence_flips =
       equalize_valences(result.mesh, params.flip_bend_deg, params.min_corner_deg);
   CrossFieldParams field_params;
@@ -361,11 +369,36 @@ FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams
                                         field.direction[at(f)]);
   }
   for (int v = 0; v < q.num_vertices(); ++v) {
-    if (!q.is_boundary_vertex(v))
-      result.misfit += std::abs(corners[at(v)] - (4 - field.index[at(v)]));
+    if (q.is_boundary_vertex(v)) continue;
+    result.misfit += std::abs(corners[at(v)] - (4 - field.index[at(v)]));
+    if (corners[at(v)] % 4 != 0) ++result.singular_vertices;
   }
   result.mean_alignment = q.num_faces() > 0 ? alignment / q.num_faces() : 0.0;
   return result;
+}
+
+}  // namespace
+
+FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams& params) {
+  const PolygonMesh triangles = fan_triangulated(surface);
+  std::vector<double> edges{params.edge_mm};
+  for (double factor : params.edge_factors) edges.push_back(factor * params.edge_mm);
+  // Two threads take the candidates in turn; the choice reads them in order.
+  std::vector<std::optional<FieldProxy>> made(edges.size());
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i = next++; i < edges.size(); i = next++)
+      made[i] = proxy_at(triangles, edges[i], params);
+  };
+  std::future<void> other = std::async(std::launch::async, work);
+  work();
+  other.get();
+  FieldProxy best = std::move(*made.front());
+  for (std::size_t i = 1; i < made.size(); ++i) {
+    if (made[i]->singular_vertices < best.singular_vertices) best = std::move(*made[i]);
+  }
+  best.candidates = static_cast<int>(edges.size());
+  return best;
 }
 
 }  // namespace planner

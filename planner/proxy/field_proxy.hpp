@@ -30,6 +30,13 @@
 // pair_cost more per quarter turn of index (the neighbourhood, so that the
 // pair is cancelled, not moved a few edges apart) and the flow runs again,
 // for at most pair_rounds rounds, until no such pair is left.
+//
+// Resampling a fine scan down to the proxy's edge (remesh.hpp `resample`,
+// the decimater's long chain of collapses) is chaotic: the scale's ninth
+// digit changes which triangles Q has, and with them the field's
+// singularities and Q's singular vertices (12 to 22 on `gargoyle` at 100
+// mm). So Q is made at the target edge and at edge_factors of it, and the
+// one with the fewest singular vertices is kept (the first on a tie).
 #pragma once
 
 #include <vector>
@@ -48,6 +55,8 @@ struct FieldProxyParams {
   int pair_cost = 40;            // per quarter turn near a pair (pair_rings), added each round
   int pair_rounds = 4;           // flows run again to cancel near pairs (0: none)
   int pair_rings = 2;            // a +1 and a -1 this many edges apart or nearer are a pair
+  // Further proxies at these multiples of edge_mm (none: the one alone).
+  std::vector<double> edge_factors{0.97, 1.03, 0.94, 1.06};
 };
 
 struct FieldProxy {
@@ -57,6 +66,9 @@ struct FieldProxy {
   int field_singularities = 0;        // of the field on `mesh`
   int misfit = 0;                     // sum over interior vertices of |c(v) - (4 - k(v))|
   double mean_alignment = 0.0;        // mean misalignment of the chosen corners, 0..1
+  int singular_vertices = 0;          // interior vertices whose corners are not a multiple of 4
+  double edge_mm = 0.0;               // the target edge of the one kept
+  int candidates = 1;                 // proxies made (1 + edge_factors)
 };
 
 // Flips edges of a triangle mesh toward valence 6 inside and 4 on the
@@ -75,8 +87,9 @@ double vanishing_misalignment(const PolygonMesh& mesh, int f, int corner, const 
 
 // The proxy of a checked surface: resampled to triangles of about
 // params.edge_mm, valences equalized, the smoothest cross field solved on
-// those triangles and the vanishing corners chosen by the flow above.
-// Deterministic.
+// those triangles and the vanishing corners chosen by the flow above; made
+// at each edge of params.edge_factors too (two threads share them), and the one
+// with the fewest singular vertices kept. Deterministic.
 FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams& params);
 
 // The flow alone (and its rounds against near pairs), on a triangle mesh

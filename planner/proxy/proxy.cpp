@@ -279,6 +279,8 @@ ProxyResult make_field_proxy(const PolygonMesh& input, const ProxyParams& params
   field.misfit_cost = params.misfit_cost;
   field.singular_cost = params.singular_cost;
   FieldProxy proxy = field_guided_proxy(input, field);
+  result.edge_mm = proxy.edge_mm;
+  result.edge_candidates = proxy.candidates;
   result.mesh = std::move(proxy.mesh);
   result.vanishing_corner = std::move(proxy.vanishing_corner);
   result.valence_flips = proxy.valence_flips;

@@ -71,6 +71,9 @@ struct ProxyResult {
   // remeshed: extractions tried (the first spacing, then 99, 101, 97, 103% of
   // it until one gives a clean surface)
   int remesh_attempts = 0;
+  // "field": proxies made, at target edges a few percent apart, of which the
+  // one with the fewest singular vertices is kept (field_proxy.hpp)
+  int edge_candidates = 0;
   // "field" (field_proxy.hpp): every face a triangle, with these vanishing
   // corners (per face); empty for the other methods.
   std::vector<int> vanishing_corner;

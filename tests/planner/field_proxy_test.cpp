@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -231,6 +232,55 @@ TEST(FieldProxyTest, TheProxyOfAnEllipsoidCarriesTheFieldsSingularitiesOnly) {
   const CutMesh cut = cut_surface(q, CutParams{}, &proxy.vanishing_corner);
   EXPECT_TRUE(verify_cut(cut).empty());
   EXPECT_LT(cut.arcs.size(), 20U);
+}
+
+// Q is made at the target edge and at each of edge_factors of it, and the
+// one with the fewest singular vertices is kept, the first on a tie: the
+// very proxy that asking for that edge alone gives.
+TEST(FieldProxyTest, OfTheProxiesAtNearbyEdgesTheOneWithFewestSingularVerticesIsKept) {
+  // Fine enough that every edge below decimates it, and bumpy, so that the
+  // field has singularities that the resampling moves and merges.
+  PolygonMesh surface = triangulated(quad_ellipsoid(50.0, 0.7, 24));
+  for (Vec3& p : surface.positions) {
+    p *= 1.0 + 0.08 * std::sin(0.31 * p.x()) * std::sin(0.27 * p.y()) * std::sin(0.23 * p.z());
+  }
+  FieldProxyParams params;
+  params.edge_mm = 6.0;
+  params.edge_factors = {0.9, 1.1, 0.8, 1.2};
+  // Alignment before all and no rounds against near pairs: Q keeps pairs,
+  // and how many depends on the triangles.
+  params.alignment_cost = 200;
+  params.pair_rounds = 0;
+  const FieldProxy kept = field_guided_proxy(surface, params);
+  EXPECT_EQ(kept.candidates, 5);
+  std::vector<double> edges{params.edge_mm};
+  for (double f : params.edge_factors) edges.push_back(f * params.edge_mm);
+  std::vector<FieldProxy> alone;
+  for (double edge : edges) {
+    FieldProxyParams one = params;
+    one.edge_mm = edge;
+    one.edge_factors.clear();
+    alone.push_back(field_guided_proxy(surface, one));
+    EXPECT_EQ(alone.back().candidates, 1);
+    const FieldLabels labels = labels_of(alone.back().mesh, alone.back().vanishing_corner);
+    EXPECT_EQ(alone.back().singular_vertices, static_cast<int>(labels.singular_vertices.size()));
+  }
+  std::size_t first_fewest = 0;
+  for (std::size_t i = 1; i < alone.size(); ++i) {
+    if (alone[i].singular_vertices < alone[first_fewest].singular_vertices) first_fewest = i;
+  }
+  std::cout << "singular vertices at each edge:";
+  for (const FieldProxy& one : alone) std::cout << " " << one.singular_vertices;
+  std::cout << "; kept the proxy at " << kept.edge_mm << " mm\n";
+  EXPECT_GT(first_fewest, 0U);  // the case holds a choice to make
+  EXPECT_EQ(kept.singular_vertices, alone[first_fewest].singular_vertices);
+  EXPECT_DOUBLE_EQ(kept.edge_mm, edges[first_fewest]);
+  EXPECT_EQ(kept.mesh.faces, alone[first_fewest].mesh.faces);
+  EXPECT_EQ(kept.vanishing_corner, alone[first_fewest].vanishing_corner);
+  // The candidates differ: a different edge is a different resampling.
+  EXPECT_NE(alone.front().mesh.faces.size(), alone.back().mesh.faces.size());
+  // And the choice does not depend on which thread made which candidate.
+  EXPECT_EQ(field_guided_proxy(surface, params).mesh.positions, kept.mesh.positions);
 }
 
 TEST(FieldProxyTest, AQuadDominantInputIsNotRemeshedByMakeProxy) {
