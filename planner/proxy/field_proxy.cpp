@@ -5,9 +5,7 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <future>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -18,6 +16,7 @@
 #include "planner/mesh/soup.hpp"
 #include "planner/proxy/cross_field.hpp"
 #include "planner/proxy/remesh.hpp"
+#include "simulators/cloth/parallel.hpp"
 
 namespace planner {
 
@@ -383,16 +382,11 @@ FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams
   const PolygonMesh triangles = fan_triangulated(surface);
   std::vector<double> edges{params.edge_mm};
   for (double factor : params.edge_factors) edges.push_back(factor * params.edge_mm);
-  // Two threads take the candidates in turn; the choice reads them in order.
+  // Each candidate on whichever thread comes free; the choice reads them in
+  // order, so it does not depend on the threads.
   std::vector<std::optional<FieldProxy>> made(edges.size());
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t i = next++; i < edges.size(); i = next++)
-      made[i] = proxy_at(triangles, edges[i], params);
-  };
-  std::future<void> other = std::async(std::launch::async, work);
-  work();
-  other.get();
+  cloth::parallel_tasks(static_cast<int>(edges.size()), params.threads,
+                        [&](int i) { made[at(i)] = proxy_at(triangles, edges[at(i)], params); });
   FieldProxy best = std::move(*made.front());
   for (std::size_t i = 1; i < made.size(); ++i) {
     if (made[i]->singular_vertices < best.singular_vertices) best = std::move(*made[i]);

@@ -57,6 +57,7 @@ struct FieldProxyParams {
   int pair_rings = 2;            // a +1 and a -1 this many edges apart or nearer are a pair
   // Further proxies at these multiples of edge_mm (none: the one alone).
   std::vector<double> edge_factors{0.97, 1.03, 0.94, 1.06};
+  int threads = 0;  // for the proxies at the edges; 0: OpenMP's count (cloth::resolve_threads)
 };
 
 struct FieldProxy {
@@ -88,7 +89,7 @@ double vanishing_misalignment(const PolygonMesh& mesh, int f, int corner, const 
 // The proxy of a checked surface: resampled to triangles of about
 // params.edge_mm, valences equalized, the smoothest cross field solved on
 // those triangles and the vanishing corners chosen by the flow above; made
-// at each edge of params.edge_factors too (two threads share them), and the one
+// at each edge of params.edge_factors too (params.threads share them), and the one
 // with the fewest singular vertices kept. Deterministic.
 FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams& params);
 

@@ -279,7 +279,11 @@ TEST(FieldProxyTest, OfTheProxiesAtNearbyEdgesTheOneWithFewestSingularVerticesIs
   EXPECT_EQ(kept.vanishing_corner, alone[first_fewest].vanishing_corner);
   // The candidates differ: a different edge is a different resampling.
   EXPECT_NE(alone.front().mesh.faces.size(), alone.back().mesh.faces.size());
-  // And the choice does not depend on which thread made which candidate.
+  // And the choice does not depend on the threads that made the candidates.
+  FieldProxyParams one_thread = params;
+  one_thread.threads = 1;
+  params.threads = 2;
+  EXPECT_EQ(field_guided_proxy(surface, one_thread).mesh.positions, kept.mesh.positions);
   EXPECT_EQ(field_guided_proxy(surface, params).mesh.positions, kept.mesh.positions);
 }
 
