@@ -341,7 +341,7 @@ std::vector<int> field_vanishing_corners(const PolygonMesh& triangles,
 
 namespace {
 
-// One proxy at one target edge: steps 1-3 of docs/cutting.md, "The
+// One proxy at one target edge: steps 1-4 of docs/cutting.md, "The
 // field-guided proxy".
 FieldProxy proxy_at(const PolygonMesh& triangles, double edge_mm, const FieldProxyParams& params) {
   FieldProxy result;
@@ -381,7 +381,12 @@ FieldProxy proxy_at(const PolygonMesh& triangles, double edge_mm, const FieldPro
 FieldProxy field_guided_proxy(const PolygonMesh& surface, const FieldProxyParams& params) {
   const PolygonMesh triangles = fan_triangulated(surface);
   std::vector<double> edges{params.edge_mm};
-  for (double factor : params.edge_factors) edges.push_back(factor * params.edge_mm);
+  for (double factor : params.edge_factors) {
+    // A target of no length would subdivide without end.
+    if (!(factor > 0.0))
+      throw std::invalid_argument("field_guided_proxy: edge factors must be positive");
+    edges.push_back(factor * params.edge_mm);
+  }
   // Each candidate on whichever thread comes free; the choice reads them in
   // order, so it does not depend on the threads.
   std::vector<std::optional<FieldProxy>> made(edges.size());

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -279,6 +280,10 @@ TEST(FieldProxyTest, OfTheProxiesAtNearbyEdgesTheOneWithFewestSingularVerticesIs
   EXPECT_EQ(kept.vanishing_corner, alone[first_fewest].vanishing_corner);
   // The candidates differ: a different edge is a different resampling.
   EXPECT_NE(alone.front().mesh.faces.size(), alone.back().mesh.faces.size());
+  // A factor of no length is refused before anything is made.
+  FieldProxyParams zero = params;
+  zero.edge_factors = {1.1, 0.0};
+  EXPECT_THROW(field_guided_proxy(surface, zero), std::invalid_argument);
   // And the choice does not depend on the threads that made the candidates.
   FieldProxyParams one_thread = params;
   one_thread.threads = 1;
