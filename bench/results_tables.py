@@ -126,7 +126,9 @@ def cut_rows(knit, names):
 
 
 def stitch_rows(knit, names):
-    rows, met = [], 0
+    """The rows, how many meet every target, and the meshes whose stitch
+    vertices lie more than half a wale from the garment."""
+    rows, met, far = [], 0, []
     for name in names:
         folder = os.path.join(knit, name)
         report = load(os.path.join(folder, "stitch-mesh.json"))
@@ -135,8 +137,13 @@ def stitch_rows(knit, names):
         cells = stitch_mesh_table.cells(folder)
         met += cells[-1] == "all met"
         off = report["report"]["off_surface"]["faces"]
-        rows.append([name] + cells + [off, seconds(report["report"]["seconds"])])
-    return rows, met
+        distance = report["report"]["surface_distance"]
+        if distance["max_mm"] > 0.5 * report["report"]["gauge"]["wale_mm"]:
+            far.append(name)
+        rows.append([name] + cells + [off, "%.2f / %.4f" % (distance["max_mm"],
+                                                            distance["mean_mm"]),
+                                      seconds(report["report"]["seconds"])])
+    return rows, met, far
 
 
 def schedule_figures(folder):
@@ -250,13 +257,18 @@ def main(out, command, machine, commit):
              "rules of thumb (edge, stacked and opposed shaping, one-stitch rows); the targets "
              "the mesh misses (means within 1 ± 0.05, shares at least 90%, stitches within "
              "1 ± 0.10: docs/stitch-mesh.md); stitches with a side more than one wale off the "
-             "surface (P087).\n")
-    rows, met = stitch_rows(knit, names)
-    p.append(table(["mesh"] + stitch_mesh_table.HEADER + ["off surface", "s"],
-                   ["---"] + stitch_mesh_table.ALIGN + ["---:", "---:"], rows))
+             "surface (P087); how far the stitch vertices lie from the garment's surface, the "
+             "largest and the mean (`surface_distance`, docs/stitch-mesh.md, \"On the garment's "
+             "surface\").\n")
+    rows, met, far = stitch_rows(knit, names)
+    p.append(table(["mesh"] + stitch_mesh_table.HEADER
+                   + ["off surface", "from the garment, max / mean mm", "s"],
+                   ["---"] + stitch_mesh_table.ALIGN + ["---:", "---:", "---:"], rows))
     p.append("")
     p.append(f"{met} of {len(rows)} stitch meshes meet every target; "
-             f"{thousands(sum(int(r[1]) for r in rows))} stitches in all.\n")
+             f"{thousands(sum(int(r[1]) for r in rows))} stitches in all. The stitch vertices "
+             f"lie within half a wale of the garment on {len(rows) - len(far)} of {len(rows)}"
+             + (" (not: " + ", ".join(far) + ")" if far else "") + ".\n")
 
     p.append("### Schedule (§7)\n")
     p.append("Pieces; scheduling cuts (§7.3); wale seams (rows that meet running opposite ways, "
